@@ -1,0 +1,110 @@
+// The scene: geometry, materials, emitters, media, camera and the acceleration
+// structure. Built by a front end (YAML loader, Mitsuba importer, or code) through the
+// add_* methods, then commit() builds the Embree BVH. After commit the scene is
+// immutable and safe to query from many threads.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/bsdf.h"
+#include "scene/camera.h"
+#include "scene/emitter.h"
+#include "scene/medium.h"
+#include "scene/shape.h"
+#include "scene/surface.h"
+
+namespace dp::scene {
+
+// Capability flags so integrators can skip machinery a scene does not need.
+struct Caps {
+  bool has_specular = false;      // some material has a delta lobe
+  bool has_glossy = false;        // some material has a glossy (microfacet/phong) lobe
+  bool has_media = false;
+  bool has_textures = false;
+  bool has_delta_lights = false;  // point, spot or directional
+  bool has_env = false;           // environment emitter
+};
+
+struct IntegratorDefaults {  // the scene file's optional `integrator:` block
+  std::string type = "path";
+  int max_depth = 8;
+  int spp = 0;  // 0 = not set by the scene
+};
+
+class EmbreeAccel;
+
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  // --- construction (before commit) ---
+  int add_bsdf(BsdfPtr bsdf, const std::string& name = {});
+  int add_medium(HomogeneousMedium medium);
+  // Adds a shape; if `emission` is non-zero an AreaEmitter is attached to it.
+  int add_shape(ShapePtr shape, const Rgb& emission = Rgb::Zero());
+  int add_emitter(EmitterPtr emitter);  // point/spot/directional/environment
+  void set_camera(const CameraDesc& desc);
+  void set_camera_medium(int medium) { m_camera_medium = medium; }
+  void set_integrator_defaults(const IntegratorDefaults& d) { m_integrator = d; }
+  void set_source(const std::string& path) { m_source = path; }
+  // Builds the BVH and light-selection tables; computes caps and bounds.
+  void commit();
+
+  // --- queries (after commit) ---
+  std::optional<SurfaceHit> intersect(const Ray& ray) const;
+  bool occluded(const Ray& ray) const;
+  // True if the open segment between a and b is blocked (endpoints excluded by epsilon).
+  bool occluded(const Vec3& a, const Vec3& b) const;
+  // Ray leaving surface point sp in direction d, origin offset along ng to avoid
+  // self-intersection.
+  Ray spawn_ray(const SurfacePoint& sp, const Vec3& d) const;
+  // Segment from sp toward target, shortened by epsilon at both ends.
+  Ray spawn_segment(const SurfacePoint& sp, const Vec3& target) const;
+
+  // Light selection for next-event estimation: proportional to emitted power is not
+  // robust for environment maps, so selection is uniform over emitters.
+  const Emitter* sample_emitter(float u, float& pmf) const;
+  float emitter_pmf(const Emitter* e) const;
+
+  const PerspectiveCamera& camera() const { return *m_camera; }
+  const std::vector<BsdfPtr>& bsdfs() const { return m_bsdfs; }
+  const std::vector<std::string>& bsdf_names() const { return m_bsdf_names; }
+  const std::vector<ShapePtr>& shapes() const { return m_shapes; }
+  const std::vector<EmitterPtr>& emitters() const { return m_emitters; }
+  const std::vector<HomogeneousMedium>& media() const { return m_media; }
+  const EnvironmentEmitter* environment() const { return m_env; }
+  int camera_medium() const { return m_camera_medium; }
+  const IntegratorDefaults& integrator_defaults() const { return m_integrator; }
+  const Caps& caps() const { return m_caps; }
+  const Bounds3& bounds() const { return m_bounds; }
+  float scene_radius() const { return 0.5f * m_bounds.diagonal(); }
+  const std::string& source() const { return m_source; }
+  size_t triangle_count() const;
+  size_t degenerate_triangles_skipped() const;
+  float ray_epsilon() const { return m_epsilon; }
+
+ private:
+  std::vector<BsdfPtr> m_bsdfs;
+  std::vector<std::string> m_bsdf_names;
+  std::vector<ShapePtr> m_shapes;
+  std::vector<EmitterPtr> m_emitters;
+  std::vector<HomogeneousMedium> m_media;
+  std::unique_ptr<PerspectiveCamera> m_camera;
+  const EnvironmentEmitter* m_env = nullptr;
+  int m_camera_medium = -1;
+  IntegratorDefaults m_integrator;
+  Caps m_caps;
+  Bounds3 m_bounds;
+  float m_epsilon = 1e-4f;
+  std::string m_source;
+  std::unique_ptr<EmbreeAccel> m_accel;
+  bool m_committed = false;
+};
+
+}  // namespace dp::scene
