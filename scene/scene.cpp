@@ -1,0 +1,172 @@
+#include "scene/scene.h"
+
+#include "core/error.h"
+#include "scene/embree_accel.h"
+
+namespace dp::scene {
+
+Scene::Scene() = default;
+Scene::~Scene() = default;
+
+int Scene::add_bsdf(BsdfPtr bsdf, const std::string& name) {
+  DP_CHECK(!m_committed, "scene already committed");
+  DP_CHECK(bsdf != nullptr, "null bsdf");
+  m_bsdfs.push_back(std::move(bsdf));
+  m_bsdf_names.push_back(name);
+  return int(m_bsdfs.size()) - 1;
+}
+
+int Scene::add_medium(HomogeneousMedium medium) {
+  DP_CHECK(!m_committed, "scene already committed");
+  m_media.push_back(std::move(medium));
+  return int(m_media.size()) - 1;
+}
+
+int Scene::add_shape(ShapePtr shape, const Rgb& emission) {
+  DP_CHECK(!m_committed, "scene already committed");
+  DP_CHECK(shape != nullptr, "null shape");
+  const int index = int(m_shapes.size());
+  if ((emission > 0.0f).any()) {
+    m_emitters.push_back(std::make_unique<AreaEmitter>(shape.get(), emission));
+    shape->emitter = int(m_emitters.size()) - 1;
+  }
+  m_shapes.push_back(std::move(shape));
+  return index;
+}
+
+int Scene::add_emitter(EmitterPtr emitter) {
+  DP_CHECK(!m_committed, "scene already committed");
+  DP_CHECK(emitter->kind() != EmitterKind::area, "area emitters are added with add_shape");
+  if (emitter->kind() == EmitterKind::environment) {
+    if (m_env) throw ValueError("a scene can have only one environment emitter", m_source);
+    m_env = static_cast<const EnvironmentEmitter*>(emitter.get());
+  }
+  m_emitters.push_back(std::move(emitter));
+  return int(m_emitters.size()) - 1;
+}
+
+void Scene::set_camera(const CameraDesc& desc) { m_camera = std::make_unique<PerspectiveCamera>(desc); }
+
+void Scene::commit() {
+  DP_CHECK(!m_committed, "scene already committed");
+  if (!m_camera) throw ValueError("the scene has no camera", m_source);
+  m_bounds = Bounds3();
+  for (const auto& s : m_shapes) m_bounds.expand(s->bounds());
+  if (!m_bounds.valid()) {
+    m_bounds.expand(m_camera->position());
+    m_bounds.expand(m_camera->position() + m_camera->forward());
+  }
+  // Ray offsets scale with the magnitude of coordinates (float has ~7 digits).
+  const float extent = std::max(m_bounds.lo.cwiseAbs().maxCoeff(), m_bounds.hi.cwiseAbs().maxCoeff());
+  m_epsilon = 1e-5f * std::max(1.0f, extent);
+  for (auto& e : m_emitters) e->prepare(m_bounds);
+
+  m_caps = Caps();
+  for (const auto& b : m_bsdfs) {
+    m_caps.has_specular |= b->has_delta();
+    m_caps.has_glossy |= b->has_glossy();
+    m_caps.has_textures |= b->has_texture();
+  }
+  m_caps.has_media = !m_media.empty();
+  for (const auto& e : m_emitters) {
+    m_caps.has_delta_lights |= e->is_delta();
+    m_caps.has_env |= e->kind() == EmitterKind::environment;
+  }
+  for (const auto& s : m_shapes) {
+    DP_CHECK(s->material < int(m_bsdfs.size()), "shape material index out of range");
+    DP_CHECK(s->emitter < int(m_emitters.size()), "shape emitter index out of range");
+  }
+  m_accel = std::make_unique<EmbreeAccel>(m_shapes);
+  m_committed = true;
+}
+
+std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
+  RawHit raw;
+  if (!m_accel->intersect(ray, raw)) return std::nullopt;
+  SurfaceHit hit;
+  const Shape& shape = *m_shapes[size_t(raw.shape)];
+  shape.fill_surface(raw.prim, raw.b, ray, raw.t, hit);
+  hit.t = raw.t;
+  hit.shape = raw.shape;
+  hit.prim = raw.prim;
+  hit.bsdf = shape.material >= 0 ? m_bsdfs[size_t(shape.material)].get() : nullptr;
+  hit.emitter = shape.emitter >= 0 ? m_emitters[size_t(shape.emitter)].get() : nullptr;
+  hit.interior_medium = shape.interior_medium;
+  hit.exterior_medium = shape.exterior_medium;
+  return hit;
+}
+
+bool Scene::occluded(const Ray& ray) const { return m_accel->occluded(ray); }
+
+namespace {
+Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& d, float eps) {
+  const float scale = eps * (1.0f + p.cwiseAbs().maxCoeff());
+  return p + (ng.dot(d) >= 0.0f ? scale : -scale) * ng;
+}
+}  // namespace
+
+Ray Scene::spawn_ray(const SurfacePoint& sp, const Vec3& d) const {
+  Ray r;
+  r.o = offset_origin(sp.p, sp.ng, d, m_epsilon);
+  r.d = d;
+  r.tmin = 0.0f;
+  r.tmax = kInfinity;
+  return r;
+}
+
+Ray Scene::spawn_segment(const SurfacePoint& sp, const Vec3& target) const {
+  const Vec3 d0 = target - sp.p;
+  Ray r;
+  r.o = offset_origin(sp.p, sp.ng, d0, m_epsilon);
+  const Vec3 d = target - r.o;
+  const float len = d.norm();
+  r.d = d / len;
+  r.tmin = 0.0f;
+  r.tmax = std::max(0.0f, len - 2.0f * m_epsilon * (1.0f + target.cwiseAbs().maxCoeff()));
+  return r;
+}
+
+bool Scene::occluded(const Vec3& a, const Vec3& b) const {
+  const Vec3 d = b - a;
+  const float len = d.norm();
+  if (!(len > 0.0f)) return false;
+  Ray r;
+  r.d = d / len;
+  const float ea = m_epsilon * (1.0f + a.cwiseAbs().maxCoeff()), eb = m_epsilon * (1.0f + b.cwiseAbs().maxCoeff());
+  r.o = a;
+  r.tmin = ea;
+  r.tmax = len - eb;
+  if (r.tmax <= r.tmin) return false;
+  return m_accel->occluded(r);
+}
+
+const Emitter* Scene::sample_emitter(float u, float& pmf) const {
+  if (m_emitters.empty()) {
+    pmf = 0.0f;
+    return nullptr;
+  }
+  const size_t n = m_emitters.size();
+  const size_t i = std::min(size_t(u * float(n)), n - 1);
+  pmf = 1.0f / float(n);
+  return m_emitters[i].get();
+}
+
+float Scene::emitter_pmf(const Emitter* e) const {
+  return (e && !m_emitters.empty()) ? 1.0f / float(m_emitters.size()) : 0.0f;
+}
+
+size_t Scene::triangle_count() const {
+  size_t n = 0;
+  for (const auto& s : m_shapes)
+    if (const auto* m = dynamic_cast<const TriangleMesh*>(s.get())) n += m->triangles.size();
+  return n;
+}
+
+size_t Scene::degenerate_triangles_skipped() const {
+  size_t n = 0;
+  for (const auto& s : m_shapes)
+    if (const auto* m = dynamic_cast<const TriangleMesh*>(s.get())) n += m->degenerate_skipped;
+  return n;
+}
+
+}  // namespace dp::scene
