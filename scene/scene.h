@@ -4,6 +4,7 @@
 // immutable and safe to query from many threads.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,6 +33,8 @@ struct IntegratorDefaults {  // the scene file's optional `integrator:` block
   std::string type = "path";
   int max_depth = 8;
   int spp = 0;  // 0 = not set by the scene
+  // Every other key of the block, verbatim, for the integrator's own settings.
+  std::map<std::string, std::string> settings;
 };
 
 class EmbreeAccel;
