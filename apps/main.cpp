@@ -1,0 +1,26 @@
+// deltapath: command-line front end (render, info, compare, reconstruct).
+#include <cstdio>
+#include <exception>
+
+#include "apps/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Deltapath: gradient-domain light transport"};
+  app.require_subcommand(1);
+  dp::apps::register_render(app);
+  dp::apps::register_info(app);
+  dp::apps::register_compare(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const dp::Error& e) {
+    std::fprintf(stderr, "deltapath: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "deltapath: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,44 @@
+#include "apps/output.h"
+
+#include <fstream>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace dp::apps {
+
+std::string sibling_path(const std::string& exr_path, const std::string& ext) {
+  const size_t dot = exr_path.rfind('.');
+  const size_t slash = exr_path.find_last_of('/');
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? exr_path.substr(0, dot) : exr_path) + ext;
+}
+
+void write_render_outputs(const std::string& exr_path, integrators::RenderResult& result, core::Json sidecar) {
+  size_t nonfinite = 0;
+  for (auto& l : result.layers) nonfinite += l.image.zero_nonfinite();
+  if (nonfinite > 0) log::warn(nonfinite, " non-finite pixels were zeroed before writing (this is a bug; please report)");
+  core::write_exr(exr_path, result.layers);
+  core::write_png(sibling_path(exr_path, ".png"), result.layers.at(0).image);
+
+  sidecar["wall_seconds"] = result.wall_seconds;
+  sidecar["spp_min"] = result.min_spp;
+  sidecar["spp_max"] = result.max_spp;
+  sidecar["partial"] = result.partial;
+  sidecar["nonfinite_pixels_zeroed"] = uint64_t(nonfinite);
+  core::Json layers = core::Json::array();
+  for (const auto& l : result.layers) layers.push_back(l.name.empty() ? "RGB" : l.name);
+  sidecar["layers"] = layers;
+  const Rgbd mean = result.layers.at(0).image.mean();
+  sidecar["mean"] = core::Json(core::Json::Array{mean[0], mean[1], mean[2]});
+  core::Json counters = core::Json::object();
+  for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
+  sidecar["counters"] = counters;
+  sidecar["info"] = result.info;
+  const std::string json_path = sibling_path(exr_path, ".json");
+  std::ofstream f(json_path);
+  if (!f) throw IoError("cannot write", json_path);
+  f << sidecar.dump();
+}
+
+}  // namespace dp::apps

@@ -1,0 +1,54 @@
+// Integrator interface and registry. An integrator renders a committed scene into
+// named image layers (the first is the final RGB image). Scheduling options common to
+// all integrators are in RenderOptions; integrator-specific keys come through Settings.
+// Adding an integrator = one line in the registry table in registry.cpp.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+#include "core/json.h"
+#include "core/stats.h"
+#include "integrators/settings.h"
+#include "scene/scene.h"
+
+namespace dp::integrators {
+
+struct RenderOptions {
+  int spp = 16;              // samples per pixel (ignored when time_budget > 0)
+  double time_budget = 0;    // wall-clock seconds (steady_clock); 0 = use spp
+  uint64_t seed = 0;
+  int threads = 0;           // 0 = all hardware threads
+  int max_depth = 8;         // path segments, camera to light (a directly seen light is 1)
+  bool quiet = false;        // no progress bar
+  const std::atomic<bool>* stop = nullptr;  // set asynchronously (Ctrl-C): stop at next tile
+};
+
+struct RenderResult {
+  std::vector<core::NamedLayer> layers;  // layers[0] = final image (name "")
+  core::Stats stats;
+  core::Json info = core::Json::object();  // integrator-specific facts for the sidecar
+  double wall_seconds = 0;
+  int64_t min_spp = 0, max_spp = 0;  // per-pixel sample counts actually rendered
+  bool partial = false;              // stopped before the requested budget
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  virtual RenderResult render(const scene::Scene& scene, const RenderOptions& options) = 0;
+};
+
+using IntegratorFactory = std::function<std::unique_ptr<Integrator>(Settings&)>;
+
+// Creates an integrator by name, reading its settings (then checks that every given
+// key was known). Throws dp::ValueError for unknown names.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, Settings& settings);
+std::vector<std::string> integrator_names();
+
+}  // namespace dp::integrators

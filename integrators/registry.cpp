@@ -1,0 +1,48 @@
+// The integrator registry: adding an integrator is one line in kRegistry.
+#include <algorithm>
+
+#include "core/error.h"
+#include "integrators/integrator.h"
+#include "integrators/path/path_integrator.h"
+
+namespace dp::integrators {
+
+namespace {
+template <typename T>
+std::unique_ptr<Integrator> make(Settings& s) {
+  return std::make_unique<T>(s);
+}
+
+struct Entry {
+  const char* name;
+  IntegratorFactory factory;
+  const char* description;
+};
+
+const std::vector<Entry>& registry() {
+  static const std::vector<Entry> kRegistry = {
+      {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
+  };
+  return kRegistry;
+}
+}  // namespace
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, Settings& settings) {
+  for (const auto& e : registry()) {
+    if (name != e.name) continue;
+    auto integrator = e.factory(settings);
+    settings.check_all_used(name);
+    return integrator;
+  }
+  std::string known;
+  for (const auto& e : registry()) known += (known.empty() ? "" : ", ") + std::string(e.name);
+  throw ValueError("unknown integrator '" + name + "' (available: " + known + ")");
+}
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const auto& e : registry()) names.emplace_back(e.name);
+  return names;
+}
+
+}  // namespace dp::integrators

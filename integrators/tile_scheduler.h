@@ -1,0 +1,49 @@
+// Tiled, pass-based scheduling shared by the Monte Carlo integrators.
+// The image is cut into 16x16 tiles. A fixed-spp render is one pass of `spp` samples;
+// a time-budgeted render runs passes of one sample per pixel until the wall-clock
+// budget (steady_clock) is used up. Every (pass, tile) gets its own random stream
+// derived from (seed, pass, tile), so results depend only on the seed — not on the
+// thread count or scheduling. Stopping (Ctrl-C or budget) happens at tile boundaries:
+// a tile is either fully rendered for a pass or not at all, and its sample count says so.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/rng.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+struct Tile {
+  int index = 0;
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+};
+
+struct ScheduleResult {
+  std::vector<int64_t> tile_spp;  // samples per pixel rendered in each tile
+  std::vector<Tile> tiles;
+  int64_t passes = 0;
+  bool partial = false;  // stopped before the spp target (time budgets are never partial)
+  double seconds = 0;
+  int64_t min_spp() const;
+  int64_t max_spp() const;
+  // Per-pixel sample count image helper.
+  int64_t spp_at(int x, int y) const;
+  int tiles_x = 0;
+};
+
+// fn(tile, spp, rng, thread): render `spp` samples for every pixel of the tile.
+// `thread` indexes per-thread scratch state (0 .. threads-1).
+using TileFunction = std::function<void(const Tile& tile, int spp, core::Rng& rng, int thread)>;
+
+constexpr int kTileSize = 16;
+
+ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
+                         const TileFunction& fn);
+
+// Threads that run_tiles will use for these options.
+int resolve_threads(const RenderOptions& options);
+
+}  // namespace dp::integrators
