@@ -1,0 +1,9 @@
+# Shapes, emitters and the camera (included by scene/CMakeLists.txt).
+target_sources(deltapath_scene PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/triangle_mesh.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sphere.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/emitter_area.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/emitter_point.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/emitter_directional.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/emitter_environment.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/camera.cpp)

@@ -1,0 +1,204 @@
+// Triangle meshes: clean-up, area sampling and local surface geometry.
+//
+// Conventions (see shape.h / surface.h):
+//  * Barycentrics (b1, b2) belong to vertices 1 and 2; b0 = 1 - b1 - b2.
+//  * Geometric normal ng = normalize((v1 - v0) x (v2 - v0)) (the emitting side of an
+//    area light; SCENE_FORMAT.md).
+//  * uv: interpolated from the per-vertex uvs, or the barycentrics (b1, b2) when the
+//    mesh has none, so dp/du = v1 - v0 and dp/dv = v2 - v0 in that case.
+//  * Shading normal: interpolated vertex normal when `smooth` and normals exist. It is
+//    deliberately NOT flipped into ng's hemisphere: a mesh whose vertex normals
+//    disagree with its winding keeps them, and BSDF code decides what to do with the
+//    shading/geometric mismatch (the classic pbrt-v3 flip would silently change which
+//    side a shading normal belongs to).
+//  * dndu/dndv are derivatives of the *normalized* interpolated normal along dp/du and
+//    dp/dv (zero for flat shading).
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/warp.h"
+#include "scene/shape.h"
+
+namespace dp::scene {
+
+namespace {
+
+bool finite(const Vec3& v) { return v.allFinite(); }
+
+// Solves [a b; c d] x = r for the pair of vectors (x0, x1) with
+//   a * x0 + b * x1 = r0,  c * x0 + d * x1 = r1.
+// Returns false if the system is (nearly) singular.
+bool solve2(float a, float b, float c, float d, const Vec3& r0, const Vec3& r1, Vec3& x0, Vec3& x1) {
+  const double det = double(a) * double(d) - double(b) * double(c);
+  if (!(std::abs(det) > 1e-12) || !std::isfinite(det)) return false;
+  const float inv = float(1.0 / det);
+  x0 = (d * r0 - b * r1) * inv;
+  x1 = (a * r1 - c * r0) * inv;
+  return finite(x0) && finite(x1);
+}
+
+}  // namespace
+
+void TriangleMesh::finalize() {
+  if (!normals.empty() && normals.size() != positions.size())
+    throw ValueError("mesh '" + name + "': " + std::to_string(normals.size()) + " normals for " +
+                     std::to_string(positions.size()) + " vertices");
+  if (!uvs.empty() && uvs.size() != positions.size())
+    throw ValueError("mesh '" + name + "': " + std::to_string(uvs.size()) + " uvs for " +
+                     std::to_string(positions.size()) + " vertices");
+  std::vector<std::array<uint32_t, 3>> kept;
+  kept.reserve(triangles.size());
+  std::vector<double> areas;
+  areas.reserve(triangles.size());
+  for (const auto& tri : triangles) {
+    for (uint32_t idx : tri)
+      if (idx >= positions.size())
+        throw ValueError("mesh '" + name + "': vertex index " + std::to_string(idx) + " out of range (" +
+                         std::to_string(positions.size()) + " vertices)");
+    const Vec3& v0 = positions[tri[0]];
+    const Vec3& v1 = positions[tri[1]];
+    const Vec3& v2 = positions[tri[2]];
+    // Area in double: thin slivers whose float cross product underflows are dropped
+    // only when they truly have (numerically) no area and no usable normal.
+    const Vec3d e1 = (v1 - v0).cast<double>(), e2 = (v2 - v0).cast<double>();
+    const double area = 0.5 * e1.cross(e2).norm();
+    const Vec3 ng = (v1 - v0).cross(v2 - v0);
+    const bool bad = !finite(v0) || !finite(v1) || !finite(v2) || !(area > 0.0) || !std::isfinite(area) ||
+                     !(ng.squaredNorm() > 0.0f) || !finite(ng);
+    if (bad) {
+      ++degenerate_skipped;
+      continue;
+    }
+    kept.push_back(tri);
+    areas.push_back(area);
+  }
+  triangles = std::move(kept);
+  double total = 0;
+  for (double a : areas) total += a;
+  m_cdf.resize(areas.size());
+  double running = 0;
+  for (size_t i = 0; i < areas.size(); ++i) {
+    running += areas[i];
+    m_cdf[i] = float(running / total);
+  }
+  if (!m_cdf.empty()) m_cdf.back() = 1.0f;
+  m_area = float(total);
+}
+
+Bounds3 TriangleMesh::bounds() const {
+  Bounds3 b;
+  for (const auto& tri : triangles)
+    for (uint32_t idx : tri) b.expand(positions[idx]);
+  return b;
+}
+
+float TriangleMesh::triangle_area(size_t i) const {
+  const auto& tri = triangles[i];
+  return 0.5f * (positions[tri[1]] - positions[tri[0]]).cross(positions[tri[2]] - positions[tri[0]]).norm();
+}
+
+PositionSample TriangleMesh::sample_area(const Vec2& u) const {
+  DP_CHECK(!m_cdf.empty(), "sample_area on an empty or unfinalized mesh");
+  // Pick a triangle with probability area_i / area and reuse u.x within its CDF cell.
+  const auto it = std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x());
+  const size_t i = std::min(size_t(it - m_cdf.begin()), m_cdf.size() - 1);
+  const float lo = i == 0 ? 0.0f : m_cdf[i - 1];
+  const float width = m_cdf[i] - lo;
+  const float ux = width > 0 ? std::clamp((u.x() - lo) / width, 0.0f, std::nextafter(1.0f, 0.0f)) : 0.5f;
+  const Vec2 b = core::warp::square_to_uniform_triangle(Vec2(ux, u.y()));
+  const auto& tri = triangles[i];
+  const Vec3& v0 = positions[tri[0]];
+  const Vec3& v1 = positions[tri[1]];
+  const Vec3& v2 = positions[tri[2]];
+  PositionSample s;
+  const float b0 = 1.0f - b.x() - b.y();
+  s.p = b0 * v0 + b.x() * v1 + b.y() * v2;
+  s.n = (v1 - v0).cross(v2 - v0).normalized();
+  s.uv = uvs.empty() ? b : Vec2(b0 * uvs[tri[0]] + b.x() * uvs[tri[1]] + b.y() * uvs[tri[2]]);
+  s.pdf_area = 1.0f / m_area;
+  return s;
+}
+
+void TriangleMesh::fill_surface(int prim, const Vec2& b, const Ray& ray, float t, SurfacePoint& out) const {
+  (void)ray;
+  (void)t;
+  DP_DCHECK(prim >= 0 && size_t(prim) < triangles.size(), "triangle index out of range");
+  const auto& tri = triangles[size_t(prim)];
+  const Vec3& v0 = positions[tri[0]];
+  const Vec3& v1 = positions[tri[1]];
+  const Vec3& v2 = positions[tri[2]];
+  const float b1 = b.x(), b2 = b.y(), b0 = 1.0f - b1 - b2;
+  const Vec3 e1 = v1 - v0, e2 = v2 - v0;
+
+  // Position from barycentrics (on the plane, unlike o + t d which carries the ray's
+  // rounding error along d).
+  out.p = b0 * v0 + b1 * v1 + b2 * v2;
+  out.ng = e1.cross(e2).normalized();
+
+  // uv parameterization and dp/du, dp/dv (pbrt-v3 Sec. 3.6.2: solve the 2x2 system
+  // [du1 dv1; du2 dv2] [dpdu; dpdv] = [e1; e2]).
+  Vec2 uv0(0, 0), uv1(1, 0), uv2(0, 1);
+  if (!uvs.empty()) {
+    uv0 = uvs[tri[0]];
+    uv1 = uvs[tri[1]];
+    uv2 = uvs[tri[2]];
+  }
+  out.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+  const Vec2 duv1 = uv1 - uv0, duv2 = uv2 - uv0;
+  bool uv_ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), e1, e2, out.dpdu, out.dpdv);
+  if (uv_ok && !(out.dpdu.cross(out.dpdv).squaredNorm() > 0.0f)) uv_ok = false;
+  if (!uv_ok) {
+    // Degenerate uvs: an arbitrary orthonormal tangent frame around ng.
+    const Frame f = Frame::from_normal(out.ng);
+    out.dpdu = f.s;
+    out.dpdv = f.t;
+  }
+
+  const bool shade_smooth = smooth && !normals.empty();
+  Vec3 ns = out.ng;
+  out.dndu = Vec3::Zero();
+  out.dndv = Vec3::Zero();
+  if (shade_smooth) {
+    const Vec3& n0 = normals[tri[0]];
+    const Vec3& n1 = normals[tri[1]];
+    const Vec3& n2 = normals[tri[2]];
+    const Vec3 n_raw = b0 * n0 + b1 * n1 + b2 * n2;
+    const float len = n_raw.norm();
+    if (len > 0.0f && std::isfinite(len)) {
+      ns = n_raw / len;
+      // Derivatives of the raw interpolated normal w.r.t. the barycentrics are
+      // (n1 - n0, n2 - n0). Map them to (u, v): with uvs, by the same 2x2 system as
+      // dp/du; otherwise along the arbitrary tangents: find the barycentric
+      // displacement (db1, db2) with e1 db1 + e2 db2 = dpdu via the Gram system.
+      const Vec3 dn1 = n1 - n0, dn2 = n2 - n0;
+      Vec3 dndu_raw, dndv_raw;
+      bool ok;
+      if (uv_ok) {
+        ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), dn1, dn2, dndu_raw, dndv_raw);
+      } else {
+        const float g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
+        const double det = double(g11) * double(g22) - double(g12) * double(g12);
+        ok = std::abs(det) > 0.0;
+        if (ok) {
+          auto along = [&](const Vec3& tangent) {
+            const double r1 = double(e1.dot(tangent)), r2 = double(e2.dot(tangent));
+            const double db1 = (double(g22) * r1 - double(g12) * r2) / det;
+            const double db2 = (double(g11) * r2 - double(g12) * r1) / det;
+            return Vec3(dn1 * float(db1) + dn2 * float(db2));
+          };
+          dndu_raw = along(out.dpdu);
+          dndv_raw = along(out.dpdv);
+        }
+      }
+      if (ok) {
+        // d(n/|n|) = (dn - n_hat (n_hat . dn)) / |n|
+        out.dndu = (dndu_raw - ns * ns.dot(dndu_raw)) / len;
+        out.dndv = (dndv_raw - ns * ns.dot(dndv_raw)) / len;
+      }
+    }
+  }
+  out.shading = Frame::from_normal_tangent(ns, out.dpdu);
+}
+
+}  // namespace dp::scene
