@@ -1,0 +1,21 @@
+// Front-end dispatch by file extension (case-insensitive): .yaml/.yml -> YAML format
+// (SCENE_FORMAT.md), .xml -> Mitsuba importer (not available yet).
+#include "scene/loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace dp::scene {
+
+std::unique_ptr<Scene> load_scene(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".yaml" || ext == ".yml") return load_scene_yaml(path);
+  if (ext == ".xml") throw Error("Mitsuba XML import is not available yet", path);
+  throw IoError("unknown scene file type '" + ext + "' (expected .yaml, .yml or .xml)", path);
+}
+
+}  // namespace dp::scene
