@@ -1,0 +1,136 @@
+#include "reconstruct/laplacian.h"
+
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "core/error.h"
+#include "core/thread_pool.h"
+
+namespace dp::reconstruct {
+
+void run_team(int threads, const std::function<void(int)>& fn) {
+  if (threads <= 1) {
+    fn(0);
+    return;
+  }
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto guarded = [&](int t) {
+    try {
+      fn(t);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(size_t(threads - 1));
+  for (int t = 1; t < threads; ++t) pool.emplace_back(guarded, t);
+  guarded(0);
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+}
+
+int resolve_threads(int threads) {
+  const int hw = core::hardware_threads();
+  if (threads <= 0) return hw;
+  return std::min(threads, std::max(hw, 1));
+}
+
+Laplacian::Laplacian(const Kernel& kernel) : m_kernel(kernel) {
+  const size_t n = kernel.pixels();
+  const auto& pairs = kernel.pairs();
+  m_offset.assign(n + 1, 0);
+  for (const PixelPair& p : pairs) {
+    ++m_offset[size_t(p.i) + 1];
+    ++m_offset[size_t(p.j) + 1];
+  }
+  for (size_t i = 0; i < n; ++i) m_offset[i + 1] += m_offset[i];
+  const size_t entries = size_t(m_offset[n]);
+  m_nbr.resize(entries);
+  m_row.resize(entries);
+  m_weight.assign(entries, 1.0f);
+  std::vector<int64_t> fill(m_offset.begin(), m_offset.end() - 1);
+  // Rows are visited in order, so each pixel's entries are sorted by row index: the
+  // operator (and every reduction over it) is deterministic.
+  for (size_t r = 0; r < pairs.size(); ++r) {
+    const PixelPair& p = pairs[r];
+    const int64_t ei = fill[size_t(p.i)]++, ej = fill[size_t(p.j)]++;
+    m_nbr[size_t(ei)] = p.j;
+    m_row[size_t(ei)] = int32_t(r);
+    m_nbr[size_t(ej)] = p.i;
+    m_row[size_t(ej)] = int32_t(r);
+  }
+  m_diag.assign(n, 0.0f);
+  m_inv_diag.assign(n, 0.0f);
+}
+
+void Laplacian::set_weights(const float* row_weights, const float* pixel_weights, float alpha, int threads) {
+  DP_CHECK(alpha >= 0.0f, "alpha must be >= 0");
+  m_alpha2 = alpha * alpha;
+  const size_t n = pixels();
+  if (pixel_weights)
+    m_pixel_weight.assign(pixel_weights, pixel_weights + n);
+  else
+    m_pixel_weight.clear();
+  threads = resolve_threads(threads);
+  run_team(threads, [&](int t) {
+    const size_t lo = part_begin(n, threads, t), hi = part_begin(n, threads, t + 1);
+    for (size_t i = lo; i < hi; ++i) {
+      double d = double(m_alpha2) * (pixel_weights ? double(pixel_weights[i]) : 1.0);
+      for (int64_t e = m_offset[i]; e < m_offset[i + 1]; ++e) {
+        const float w = row_weights ? row_weights[m_row[size_t(e)]] : 1.0f;
+        m_weight[size_t(e)] = w;
+        d += double(w);
+      }
+      m_diag[i] = float(d);
+      m_inv_diag[i] = d > 0.0 ? float(1.0 / d) : 0.0f;
+    }
+  });
+}
+
+void Laplacian::apply(const float* in, float* out, size_t lo, size_t hi) const {
+  const int64_t* off = m_offset.data();
+  const int32_t* nbr = m_nbr.data();
+  const float* wt = m_weight.data();
+  for (size_t i = lo; i < hi; ++i) {
+    const float d = m_diag[i];
+    float a0 = d * in[3 * i], a1 = d * in[3 * i + 1], a2 = d * in[3 * i + 2];
+    for (int64_t e = off[i], end = off[i + 1]; e < end; ++e) {
+      const float w = wt[e];
+      const float* v = in + 3 * size_t(nbr[e]);
+      a0 -= w * v[0];
+      a1 -= w * v[1];
+      a2 -= w * v[2];
+    }
+    out[3 * i] = a0;
+    out[3 * i + 1] = a1;
+    out[3 * i + 2] = a2;
+  }
+}
+
+void Laplacian::rhs(const std::vector<Rgb>& b, const float* g, float* out, int threads) const {
+  DP_CHECK(b.size() == m_kernel.rows(), "b size mismatch");
+  const size_t n = pixels();
+  const auto& pairs = m_kernel.pairs();
+  threads = resolve_threads(threads);
+  run_team(threads, [&](int t) {
+    const size_t lo = part_begin(n, threads, t), hi = part_begin(n, threads, t + 1);
+    for (size_t i = lo; i < hi; ++i) {
+      // (H^T W b)_i: +w_r b_r where i is the pair's j, -w_r b_r where it is the pair's i.
+      const double s = double(m_alpha2) * (m_pixel_weight.empty() ? 1.0 : double(m_pixel_weight[i]));
+      double a[3] = {s * double(g[3 * i]), s * double(g[3 * i + 1]), s * double(g[3 * i + 2])};
+      for (int64_t e = m_offset[i]; e < m_offset[i + 1]; ++e) {
+        const int32_t r = m_row[size_t(e)];
+        const double w = double(m_weight[size_t(e)]);
+        const double sign = size_t(pairs[size_t(r)].j) == i ? 1.0 : -1.0;
+        for (int c = 0; c < 3; ++c) a[c] += sign * w * double(b[size_t(r)][c]);
+      }
+      for (int c = 0; c < 3; ++c) out[3 * i + size_t(c)] = float(a[c]);
+    }
+  });
+}
+
+}  // namespace dp::reconstruct

@@ -1,0 +1,58 @@
+// The normal-equation operator of the weighted screened Poisson problem,
+//     A = H^T W H + alpha^2 P        (Lehtinen et al. 2013, Eq. 8 normal equations;
+//                                      Manzi et al. 2014, Sec. 3.5 / Eq. 8),
+// stored as a weighted graph Laplacian over pixels in CSR form: pixel i has one entry
+// per kernel row touching it (neighbour n, weight w_r), and
+//     (A x)_i = (sum_r w_r + alpha^2 p_i) x_i - sum_r w_r x_n.
+// For the forward-difference grid with W = P = 1 this is the 5-point Laplacian with
+// Neumann boundaries plus alpha^2 (Bhat et al. 2008).
+// Vectors are RGB interleaved floats (3 per pixel); the three channels share A.
+// The Laplacian keeps a reference to the kernel, which must outlive it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/image.h"
+#include "reconstruct/problem.h"
+
+namespace dp::reconstruct {
+
+class Laplacian {
+ public:
+  explicit Laplacian(const Kernel& kernel);
+
+  // Sets W and P (nullptr = all ones) and alpha (>= 0; 0 gives the bare graph
+  // Laplacian H^T W H). Recomputes the diagonal and its inverse (Jacobi preconditioner).
+  void set_weights(const float* row_weights, const float* pixel_weights, float alpha, int threads);
+
+  // out[3*lo .. 3*hi) = (A in) for pixels [lo, hi).
+  void apply(const float* in, float* out, size_t lo, size_t hi) const;
+  // out = H^T W b + alpha^2 P g, the right-hand side of the normal equations.
+  void rhs(const std::vector<Rgb>& b, const float* g, float* out, int threads) const;
+
+  size_t pixels() const { return m_diag.size(); }
+  const float* inv_diag() const { return m_inv_diag.data(); }
+  const Kernel& kernel() const { return m_kernel; }
+
+ private:
+  const Kernel& m_kernel;
+  std::vector<int64_t> m_offset;  // CSR row starts, pixels()+1 entries
+  std::vector<int32_t> m_nbr;     // neighbour pixel of each entry
+  std::vector<int32_t> m_row;     // kernel row of each entry
+  std::vector<float> m_weight;    // w_r of each entry
+  std::vector<float> m_diag, m_inv_diag;
+  float m_alpha2 = 0.0f;
+  std::vector<float> m_pixel_weight;  // empty = 1
+};
+
+// Runs fn(t) for t in [0, threads) on `threads` threads (the caller is thread 0).
+// Exceptions are rethrown on the caller after all threads joined.
+void run_team(int threads, const std::function<void(int)>& fn);
+// Static partition of [0, n) into `parts` contiguous ranges: start of part t.
+inline size_t part_begin(size_t n, int parts, int t) { return n * size_t(t) / size_t(parts); }
+// Resolves 0 (= all hardware threads) and clamps to [1, hardware threads].
+int resolve_threads(int threads);
+
+}  // namespace dp::reconstruct

@@ -1,0 +1,258 @@
+#include "reconstruct/solve.h"
+
+#include <cmath>
+#include <numeric>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "core/timer.h"
+#include "reconstruct/dct_solver.h"
+#include "reconstruct/laplacian.h"
+#include "reconstruct/pcg.h"
+
+namespace dp::reconstruct {
+
+namespace {
+
+// Inputs with non-finite values replaced (see solve.h for the policy).
+struct Prepared {
+  std::vector<float> g;        // primal, RGB interleaved
+  std::vector<Rgb> b;          // finite copy of b
+  std::vector<float> row_w;    // empty = all 1
+  std::vector<float> pixel_w;  // empty = all 1
+  InputReport report;
+};
+
+int find_root(std::vector<int32_t>& parent, int32_t i) {
+  while (parent[size_t(i)] != i) {
+    parent[size_t(i)] = parent[size_t(parent[size_t(i)])];  // path halving
+    i = parent[size_t(i)];
+  }
+  return i;
+}
+
+Prepared prepare(const Problem& problem) {
+  validate(problem);
+  Prepared out;
+  const size_t n = problem.kernel.pixels(), rows = problem.kernel.rows();
+  out.g.resize(3 * n);
+  out.row_w = problem.row_weights;
+  out.pixel_w = problem.pixel_weights;
+  for (size_t i = 0; i < n; ++i) {
+    const Rgb& v = problem.primal[i];
+    const bool ok = is_finite(v);
+    for (size_t c = 0; c < 3; ++c) out.g[3 * i + c] = ok ? v[int(c)] : 0.0f;
+    if (ok) continue;
+    ++out.report.nonfinite_primal_pixels;
+    if (out.pixel_w.empty()) out.pixel_w.assign(n, 1.0f);
+    out.pixel_w[i] = 0.0f;
+  }
+  out.b = problem.b;
+  for (size_t r = 0; r < rows; ++r) {
+    if (is_finite(out.b[r])) continue;
+    ++out.report.nonfinite_rows;
+    out.b[r] = Rgb::Zero();
+    if (out.row_w.empty()) out.row_w.assign(rows, 1.0f);
+    out.row_w[r] = 0.0f;
+  }
+  if (out.report.nonfinite_primal_pixels > 0) {
+    // A connected component (over rows of positive weight) without any data term would
+    // make the system singular: anchor its pixels to 0 with weight 1.
+    std::vector<int32_t> parent(n);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (size_t r = 0; r < rows; ++r) {
+      if (!out.row_w.empty() && !(out.row_w[r] > 0.0f)) continue;
+      const PixelPair& p = problem.kernel.pairs()[r];
+      const int32_t a = find_root(parent, p.i), c = find_root(parent, p.j);
+      if (a != c) parent[size_t(a)] = c;
+    }
+    std::vector<char> anchored(n, 0);
+    for (size_t i = 0; i < n; ++i)
+      if (out.pixel_w[i] > 0.0f) anchored[size_t(find_root(parent, int32_t(i)))] = 1;
+    for (size_t i = 0; i < n; ++i) {
+      if (out.pixel_w[i] > 0.0f || anchored[size_t(find_root(parent, int32_t(i)))]) continue;
+      out.pixel_w[i] = 1.0f;
+      ++out.report.anchored_pixels;
+    }
+  }
+  if (out.report.nonfinite_primal_pixels > 0 || out.report.nonfinite_rows > 0)
+    log::warn("reconstruct: ignored ", out.report.nonfinite_primal_pixels, " primal pixels and ",
+              out.report.nonfinite_rows, " gradient rows with NaN/Inf values (", out.report.anchored_pixels,
+              " pixels anchored to 0)");
+  return out;
+}
+
+core::Image to_image(int width, int height, const std::vector<float>& v) {
+  core::Image img(width, height);
+  for (size_t i = 0; i < img.size(); ++i) img[i] = Rgb(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  return img;
+}
+
+// H^T b + alpha^2 g for the forward-difference grid (unit weights):
+// (H^T b)(x,y) = dx(x-1,y) - dx(x,y) + dy(x,y-1) - dy(x,y), absent rows omitted.
+void grid_rhs(const Kernel& k, const std::vector<Rgb>& b, const std::vector<float>& g, float alpha,
+              std::vector<float>& out, int threads) {
+  const int w = k.width(), h = k.height();
+  const double a2 = double(alpha) * double(alpha);
+  out.resize(g.size());
+  run_team(threads, [&](int t) {
+    const int y0 = int(part_begin(size_t(h), threads, t)), y1 = int(part_begin(size_t(h), threads, t + 1));
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        Rgbd acc = Rgbd::Zero();
+        if (x > 0) acc += b[k.grid_dx_row(x - 1, y)].cast<double>();
+        if (x + 1 < w) acc -= b[k.grid_dx_row(x, y)].cast<double>();
+        if (y > 0) acc += b[k.grid_dy_row(x, y - 1)].cast<double>();
+        if (y + 1 < h) acc -= b[k.grid_dy_row(x, y)].cast<double>();
+        for (size_t c = 0; c < 3; ++c) out[3 * i + c] = float(acc[int(c)] + a2 * double(g[3 * i + c]));
+      }
+  });
+}
+
+bool direct_applicable(const Problem& problem, const Prepared& in) {
+  return problem.kernel.is_forward_difference_grid() && in.row_w.empty() && in.pixel_w.empty();
+}
+
+// The L2 solve shared by solve_l2 and IRLS iteration 0. Writes x; returns CG stats
+// (iterations 0 for the DCT).
+CgStats l2_into(const Problem& problem, const Prepared& in, const SolveOptions& options, bool use_direct,
+                int cg_iterations, double cg_tolerance, Laplacian* A, std::vector<float>& x) {
+  const int threads = resolve_threads(options.threads);
+  if (use_direct) {
+    std::vector<float> rhs;
+    grid_rhs(problem.kernel, in.b, in.g, problem.alpha, rhs, threads);
+    x.resize(rhs.size());
+    // Bhat et al. 2008: (H^T H + alpha^2 I) I = H^T b + alpha^2 I_g, diagonalized by the DCT.
+    dct_solve(problem.kernel.width(), problem.kernel.height(), rhs.data(), x.data(), 1.0,
+              double(problem.alpha) * double(problem.alpha), threads);
+    return {};
+  }
+  A->set_weights(in.row_w.empty() ? nullptr : in.row_w.data(), in.pixel_w.empty() ? nullptr : in.pixel_w.data(),
+                 problem.alpha, threads);
+  std::vector<float> rhs(in.g.size());
+  A->rhs(in.b, in.g.data(), rhs.data(), threads);
+  x = in.g;  // warm start from the primal
+  CgSettings s;
+  s.max_iterations = cg_iterations;
+  s.tolerance = cg_tolerance;
+  s.threads = threads;
+  return pcg(*A, rhs.data(), x.data(), s);
+}
+
+bool choose_direct(const Problem& problem, const Prepared& in, L2Method method) {
+  const bool can = direct_applicable(problem, in);
+  if (method == L2Method::direct && !can)
+    throw ValueError(
+        "reconstruct: the direct (DCT) solve needs the forward-difference grid kernel with uniform weights "
+        "and finite inputs");
+  return method != L2Method::cg && can;
+}
+
+}  // namespace
+
+SolveResult solve_l2(const Problem& problem, const SolveOptions& options) {
+  const core::Timer timer;
+  const Prepared in = prepare(problem);
+  const bool direct = choose_direct(problem, in, options.method);
+  std::vector<float> x;
+  SolveResult result;
+  if (direct) {
+    l2_into(problem, in, options, true, 0, 0.0, nullptr, x);
+    result.method = "dct";
+  } else {
+    Laplacian A(problem.kernel);
+    const CgStats st =
+        l2_into(problem, in, options, false, options.cg_max_iterations, options.cg_tolerance, &A, x);
+    result.method = "pcg";
+    result.cg_iterations = st.iterations;
+    result.relative_residual = st.relative_residual;
+    if (!st.converged)
+      log::warn("reconstruct: L2 CG stopped after ", st.iterations, " iterations at relative residual ",
+                st.relative_residual);
+  }
+  result.image = to_image(problem.kernel.width(), problem.kernel.height(), x);
+  result.input = in.report;
+  result.seconds = timer.seconds();
+  return result;
+}
+
+SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
+  const core::Timer timer;
+  if (options.reweightings < 0) throw ValueError("reconstruct: reweightings must be >= 0");
+  const Prepared in = prepare(problem);
+  const bool direct = choose_direct(problem, in, options.method);
+  const Kernel& k = problem.kernel;
+  const size_t n = k.pixels(), rows = k.rows();
+  const int threads = resolve_threads(options.threads);
+  Laplacian A(k);
+  std::vector<float> x;
+  SolveResult result;
+  result.method = direct ? "irls+dct" : "irls+pcg";
+  // IRLS iteration 0: plain L2.
+  CgStats st = l2_into(problem, in, options, direct, options.irls_cg_iterations, options.irls_cg_tolerance, &A, x);
+  result.cg_iterations += st.iterations;
+
+  std::vector<float> row_w(rows), pixel_w(n), rhs(3 * n);
+  const float alpha = problem.alpha;
+  const auto& pairs = k.pairs();
+  struct alignas(64) Sum {
+    double v = 0.0;
+  };
+  std::vector<Sum> sums(static_cast<size_t>(threads));
+  for (int it = 1; it <= options.reweightings; ++it) {
+    // Reference IRLS schedule (ALGORITHMS.md): reg = 0.05 * 0.5^(k-1), w = 1/(|e|_2 + reg).
+    const double reg = 0.05 * std::pow(0.5, it - 1);
+    run_team(threads, [&](int t) {
+      double s = 0.0;
+      for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r) {
+        const PixelPair& p = pairs[r];
+        double e2 = 0.0;
+        for (size_t c = 0; c < 3; ++c) {
+          const double e = double(x[3 * size_t(p.j) + c]) - double(x[3 * size_t(p.i) + c]) - double(in.b[r][int(c)]);
+          e2 += e * e;
+        }
+        const double w = 1.0 / (std::sqrt(e2) + reg);
+        row_w[r] = float(w);
+        s += w;
+      }
+      for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i) {
+        double e2 = 0.0;
+        for (size_t c = 0; c < 3; ++c) {
+          const double e = double(alpha) * (double(x[3 * i + c]) - double(in.g[3 * i + c]));
+          e2 += e * e;
+        }
+        const double w = 1.0 / (std::sqrt(e2) + reg);
+        pixel_w[i] = float(w);
+        s += w;
+      }
+      sums[size_t(t)].v = s;
+    });
+    double total = 0.0;
+    for (const Sum& s : sums) total += s.v;
+    // Normalize to mean 1 over all rows (gradient and primal), then apply user weights.
+    const float scale = float(double(rows + n) / total);
+    run_team(threads, [&](int t) {
+      for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r)
+        row_w[r] *= scale * (in.row_w.empty() ? 1.0f : in.row_w[r]);
+      for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i)
+        pixel_w[i] *= scale * (in.pixel_w.empty() ? 1.0f : in.pixel_w[i]);
+    });
+    A.set_weights(row_w.data(), pixel_w.data(), alpha, threads);
+    A.rhs(in.b, in.g.data(), rhs.data(), threads);
+    CgSettings s;
+    s.max_iterations = options.irls_cg_iterations;
+    s.tolerance = options.irls_cg_tolerance;
+    s.threads = threads;
+    st = pcg(A, rhs.data(), x.data(), s);  // warm start from the current image
+    result.cg_iterations += st.iterations;
+    result.relative_residual = st.relative_residual;
+    result.reweightings = it;
+  }
+  result.image = to_image(k.width(), k.height(), x);
+  result.input = in.report;
+  result.seconds = timer.seconds();
+  return result;
+}
+
+}  // namespace dp::reconstruct
