@@ -130,6 +130,7 @@ bool EmbreeAccel::intersect(const Ray& ray, RawHit& hit) const {
   hit.shape = int(rh.hit.geomID);
   hit.prim = int(rh.hit.primID);
   hit.b = Vec2(rh.hit.u, rh.hit.v);
+  hit.ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
   return true;
 }
 

@@ -17,6 +17,7 @@ struct RawHit {
   int shape = -1;
   int prim = -1;
   Vec2 b{0, 0};  // barycentrics of vertices 1, 2 (meshes)
+  Vec3 ng{0, 0, 1};  // Embree's unnormalized geometric normal (benchmarks only)
 };
 
 class EmbreeAccel {

@@ -91,6 +91,8 @@ class Scene {
   size_t triangle_count() const;
   size_t degenerate_triangles_skipped() const;
   float ray_epsilon() const { return m_epsilon; }
+  // The raw acceleration structure (benchmarks compare against bare ray loops).
+  const EmbreeAccel& accel() const { return *m_accel; }
 
  private:
   std::vector<BsdfPtr> m_bsdfs;

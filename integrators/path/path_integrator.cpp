@@ -14,21 +14,25 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
 
   const ScheduleResult sched = run_tiles(w, h, options, "path", [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
     core::Stats& stats = thread_stats[size_t(thread)];
+    PathCounters counters;
+    int64_t dropped = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         Rgbd acc = Rgbd::Zero();
         for (int s = 0; s < spp; ++s) {
           const Vec2 raster(float(x) + rng.uniform(), float(y) + rng.uniform());
-          const Rgb L = tracer.radiance(cam.generate_ray(raster), rng, stats);
+          const Rgb L = tracer.radiance(cam.generate_ray(raster), rng, counters);
           if (!is_finite(L)) {
-            stats.add("pt.nan_dropped");  // counted and dropped, never splatted
+            ++dropped;  // counted and dropped, never splatted
             continue;
           }
           acc += L.cast<double>();
         }
-        stats.add("pt.paths", spp);
         sum[size_t(y) * size_t(w) + size_t(x)] += acc;
       }
+    counters.flush(stats);
+    stats.add("pt.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+    stats.add("pt.nan_dropped", dropped);
   });
 
   RenderResult result;

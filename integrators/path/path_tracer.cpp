@@ -12,7 +12,7 @@ static bool consistent_side(const SurfaceHit& hit, const Vec3& w_world, float co
 }
 
 Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const BsdfContext& ctx, core::Rng& rng,
-                           core::Stats& stats) const {
+                           PathCounters& counters) const {
   const float u_light = rng.uniform();
   const Vec2 u = rng.uniform2();
   float pmf;
@@ -24,7 +24,7 @@ Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const Bs
   if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
   const Rgb f = hit.bsdf->eval(ctx, wi_local, wo_local) * abs_cos_theta(wo_local);
   if (is_black(f)) return Rgb::Zero();
-  stats.add("pt.shadow_rays");
+  ++counters.shadow_rays;
   const bool blocked = std::isfinite(ds.dist) ? m_scene.occluded(m_scene.spawn_segment(hit, ds.p))
                                               : m_scene.occluded(m_scene.spawn_ray(hit, ds.wi));
   if (blocked) return Rgb::Zero();
@@ -33,7 +33,7 @@ Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const Bs
   return f * ds.radiance * (weight / light_pdf);
 }
 
-Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, core::Stats& stats) const {
+Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, PathCounters& counters) const {
   Rgb L = Rgb::Zero(), beta = Rgb::Ones();
   Ray ray = primary;
   bool prev_delta = true;  // the camera is a "delta" for MIS: directly seen lights count fully
@@ -42,6 +42,7 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, core::Stats& stats)
   const scene::EnvironmentEmitter* env = m_scene.environment();
   for (int depth = 1; depth <= m_max_depth; ++depth) {
     const auto hit = m_scene.intersect(ray);
+    ++counters.rays;
     const bool hide = depth == 1 && m_settings.hide_emitters;
     if (!hit) {
       if (env && !hide) {
@@ -68,7 +69,7 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, core::Stats& stats)
     const Vec3 wi_local = hit->shading.to_local(-ray.d);
     if (!consistent_side(*hit, -ray.d, wi_local.z())) break;
     const BsdfContext ctx{hit->uv, scene::TransportMode::radiance};
-    if (m_settings.nee && !hit->bsdf->is_purely_delta()) L += beta * next_event(*hit, wi_local, ctx, rng, stats);
+    if (m_settings.nee && !hit->bsdf->is_purely_delta()) L += beta * next_event(*hit, wi_local, ctx, rng, counters);
 
     const float u_lobe = rng.uniform();
     const Vec2 u = rng.uniform2();
@@ -83,7 +84,7 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, core::Stats& stats)
     if (depth >= m_settings.rr_depth) {
       const float q = std::min(0.95f, max_component(beta));
       if (!(rng.uniform() < q)) {
-        stats.add("pt.rr_terminated");
+        ++counters.rr_terminated;
         break;
       }
       beta /= q;

@@ -12,16 +12,27 @@
 
 namespace dp::integrators {
 
+// Hot-loop counters, flushed into core::Stats once per tile (a string-keyed map
+// lookup per ray would cost more than the ray).
+struct PathCounters {
+  int64_t rays = 0, shadow_rays = 0, rr_terminated = 0;
+  void flush(core::Stats& stats) const {
+    stats.add("pt.rays", rays);
+    stats.add("pt.shadow_rays", shadow_rays);
+    stats.add("pt.rr_terminated", rr_terminated);
+  }
+};
+
 class PathTracer {
  public:
   PathTracer(const scene::Scene& scene, const PathSettings& settings, int max_depth)
       : m_scene(scene), m_settings(settings), m_max_depth(max_depth) {}
   // Radiance arriving at the camera along `ray` (may be non-finite; the caller drops it).
-  Rgb radiance(const Ray& ray, core::Rng& rng, core::Stats& stats) const;
+  Rgb radiance(const Ray& ray, core::Rng& rng, PathCounters& counters) const;
 
  private:
   Rgb next_event(const scene::SurfaceHit& hit, const Vec3& wi_local, const scene::BsdfContext& ctx,
-                 core::Rng& rng, core::Stats& stats) const;
+                 core::Rng& rng, PathCounters& counters) const;
   const scene::Scene& m_scene;
   PathSettings m_settings;
   int m_max_depth;

@@ -1,0 +1,75 @@
+#include "tests/support/test_scenes.h"
+
+#include "scene/bsdfs.h"
+
+namespace dp::test {
+
+namespace {
+std::unique_ptr<scene::TriangleMesh> quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  auto m = std::make_unique<scene::TriangleMesh>();
+  m->positions = {a, b, c, d};
+  m->triangles = {{0, 1, 2}, {0, 2, 3}};
+  m->finalize();
+  return m;
+}
+}  // namespace
+
+double furnace_radiance(float albedo, float emission, float point_intensity) {
+  const double a = albedo;
+  return double(emission) / (1.0 - a) + a * double(point_intensity) / (kPiD * (1.0 - a));
+}
+
+std::unique_ptr<scene::Scene> furnace_sphere(float albedo, float emission, float point_intensity, int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int mat = s->add_bsdf(scene::make_diffuse(scene::constant_texture(Rgb::Constant(albedo))), "wall");
+  auto sphere = std::make_unique<scene::Sphere>(Vec3(0, 0, 0), 1.0f);
+  sphere->flip_normals = true;
+  sphere->material = mat;
+  s->add_shape(std::move(sphere), Rgb::Constant(emission));
+  if (point_intensity > 0)
+    s->add_emitter(std::make_unique<scene::PointEmitter>(Vec3(0, 0, 0), Rgb::Constant(point_intensity)));
+  scene::CameraDesc cam;
+  cam.position = Vec3(0.1f, 0.2f, 0.3f);
+  cam.look_at = Vec3(0.5f, 0.1f, -1.0f);
+  cam.fov_deg = 90;
+  cam.width = cam.height = resolution;
+  s->set_camera(cam);
+  s->commit();
+  return s;
+}
+
+std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
+  const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
+  const Vec3 p[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  auto add = [&](std::unique_ptr<scene::TriangleMesh> m, int mat) {
+    m->material = mat;
+    s->add_shape(std::move(m));
+  };
+  add(quad(p[0], p[1], p[5], p[4]), white);  // floor
+  add(quad(p[3], p[7], p[6], p[2]), white);  // ceiling
+  add(quad(p[0], p[4], p[7], p[3]), red);    // left
+  add(quad(p[1], p[2], p[6], p[5]), white);  // right
+  add(quad(p[0], p[3], p[2], p[1]), white);  // back
+  add(quad(p[4], p[5], p[6], p[7]), white);  // front (behind the camera)
+  // Ceiling light facing down, slightly below the ceiling.
+  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
+  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  auto sa = std::make_unique<scene::Sphere>(Vec3(-0.45f, -0.6f, -0.2f), 0.4f);
+  sa->material = sphere_a ? s->add_bsdf(sphere_a) : white;
+  s->add_shape(std::move(sa));
+  auto sb = std::make_unique<scene::Sphere>(Vec3(0.45f, -0.6f, 0.2f), 0.4f);
+  sb->material = sphere_b ? s->add_bsdf(sphere_b) : white;
+  s->add_shape(std::move(sb));
+  scene::CameraDesc cam;
+  cam.position = Vec3(0, 0, 0.95f);
+  cam.look_at = Vec3(0, 0, -1);
+  cam.fov_deg = 80;
+  cam.width = cam.height = resolution;
+  s->set_camera(cam);
+  s->commit();
+  return s;
+}
+
+}  // namespace dp::test
