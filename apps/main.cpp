@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/cmd_reconstruct.h"
 #include "apps/commands.h"
 #include "core/error.h"
 
@@ -11,6 +12,7 @@ int main(int argc, char** argv) {
   dp::apps::register_render(app);
   dp::apps::register_info(app);
   dp::apps::register_compare(app);
+  dp::apps::register_reconstruct(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

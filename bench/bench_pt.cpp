@@ -15,6 +15,7 @@
 #include "core/timer.h"
 #include "core/warp.h"
 #include "integrators/integrator.h"
+#include "integrators/tile_scheduler.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
 
