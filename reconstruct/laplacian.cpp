@@ -91,13 +91,15 @@ void Laplacian::set_weights(const float* row_weights, const float* pixel_weights
   });
 }
 
-void Laplacian::apply(const float* in, float* out, size_t lo, size_t hi) const {
+void Laplacian::apply_dot(const float* in, float* out, size_t lo, size_t hi, double* dot) const {
   const int64_t* off = m_offset.data();
   const int32_t* nbr = m_nbr.data();
   const float* wt = m_weight.data();
+  double d0 = 0.0, d1 = 0.0, d2 = 0.0;
   for (size_t i = lo; i < hi; ++i) {
     const float d = m_diag[i];
-    float a0 = d * in[3 * i], a1 = d * in[3 * i + 1], a2 = d * in[3 * i + 2];
+    const float x0 = in[3 * i], x1 = in[3 * i + 1], x2 = in[3 * i + 2];
+    float a0 = d * x0, a1 = d * x1, a2 = d * x2;
     for (int64_t e = off[i], end = off[i + 1]; e < end; ++e) {
       const float w = wt[e];
       const float* v = in + 3 * size_t(nbr[e]);
@@ -108,6 +110,14 @@ void Laplacian::apply(const float* in, float* out, size_t lo, size_t hi) const {
     out[3 * i] = a0;
     out[3 * i + 1] = a1;
     out[3 * i + 2] = a2;
+    d0 += double(x0 * a0);
+    d1 += double(x1 * a1);
+    d2 += double(x2 * a2);
+  }
+  if (dot) {
+    dot[0] += d0;
+    dot[1] += d1;
+    dot[2] += d2;
   }
 }
 

@@ -70,11 +70,9 @@ CgStats pcg(const Laplacian& A, const float* rhs, float* x, const CgSettings& se
     int it = 0;
     while (it < settings.max_iterations && (active[0] || active[1] || active[2])) {
       // q = A p, alpha = (r.z) / (p.q).
-      A.apply(p.data(), q.data(), lo, hi);
       {
         Partial acc;
-        for (size_t i = lo; i < hi; ++i)
-          for (size_t c = 0; c < 3; ++c) acc.v[6 + c] += double(p[3 * i + c]) * double(q[3 * i + c]);
+        A.apply_dot(p.data(), q.data(), lo, hi, acc.v + 6);
         part_a[size_t(t)] = acc;
       }
       sync.arrive_and_wait();
