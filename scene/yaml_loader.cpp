@@ -11,6 +11,7 @@
 //         key is kept verbatim in IntegratorDefaults::settings for the integrator.
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -101,7 +102,11 @@ YAML::Node parse_document(const std::string& text, const std::string& path) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw ParseError("malformed YAML: " + e.msg, path, e.mark.line >= 0 ? e.mark.line + 1 : 0);
+    // Errors found at the end of input (an unclosed bracket) are reported by yaml-cpp
+    // on the line after the last one; point at the last line instead.
+    const int last_line = int(std::count(text.begin(), text.end(), '\n')) + (text.ends_with('\n') ? 0 : 1);
+    const int line = e.mark.line >= 0 ? std::min(e.mark.line + 1, std::max(last_line, 1)) : 0;
+    throw ParseError("malformed YAML: " + e.msg, path, line);
   } catch (const YAML::Exception& e) {
     throw ParseError(std::string("malformed YAML: ") + e.what(), path, 0);
   }
