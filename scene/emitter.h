@@ -17,10 +17,13 @@
 #include "core/math.h"
 #include "scene/surface.h"
 
+namespace dp::core {
+class Distribution2D;
+}
+
 namespace dp::scene {
 
 class Shape;
-class Distribution2D;
 
 struct DirectSample {
   Vec3 p{0, 0, 0};   // point on the emitter (for infinite emitters: ref + wi * far)
@@ -119,7 +122,7 @@ class DirectionalEmitter final : public Emitter {
 };
 
 // Constant radiance, or a lat-long map (Mitsuba's envmap parameterization, documented
-// in environment_emitter.cpp; y is up) importance-sampled by luminance * sin(theta).
+// in emitter_environment.cpp; y is up) importance-sampled by luminance * sin(theta).
 class EnvironmentEmitter final : public Emitter {
  public:
   explicit EnvironmentEmitter(const Rgb& radiance);
@@ -139,7 +142,7 @@ class EnvironmentEmitter final : public Emitter {
   Mat3 m_to_world = Mat3::Identity();
   float m_scale = 1;
   float m_scene_radius = 1;
-  std::unique_ptr<Distribution2D> m_dist;
+  std::unique_ptr<core::Distribution2D> m_dist;
 };
 
 using EmitterPtr = std::unique_ptr<Emitter>;

@@ -25,11 +25,6 @@
 
 namespace dp::scene {
 
-// emitter.h forward-declares dp::scene::Distribution2D; it is the core distribution.
-class Distribution2D : public core::Distribution2D {
- public:
-  using core::Distribution2D::Distribution2D;
-};
 
 namespace {
 
@@ -71,7 +66,7 @@ EnvironmentEmitter::EnvironmentEmitter(core::Image latlong, const Mat3& to_world
       weights[size_t(y) * size_t(w) + size_t(x)] = lum * sin_theta;
     }
   }
-  m_dist = std::make_unique<Distribution2D>(weights, w, h);
+  m_dist = std::make_unique<core::Distribution2D>(weights, w, h);
 }
 
 EnvironmentEmitter::~EnvironmentEmitter() = default;
