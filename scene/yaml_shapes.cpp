@@ -5,7 +5,8 @@
 //   triangle: vertices [[x,y,z] x 3]            uv (0,0), (1,0), (0,1)
 //   quad:     vertices [[x,y,z] x 4], planar and in order (convex, no bow-tie);
 //             split into (v0,v1,v2), (v0,v2,v3);  uv (0,0), (1,0), (1,1), (0,1)
-//   sphere:   center, radius > 0; a transform may only scale uniformly
+//   sphere:   center, radius > 0; a transform may only scale uniformly (rotation
+//             moves the center; the sphere's uv parameterization stays world-aligned)
 // A shape without emission needs a material. Geometric normal (v1-v0) x (v2-v0).
 // Explicit triangles/quads must be non-degenerate; degenerate triangles inside mesh
 // files are dropped (TriangleMesh::finalize) and reported with a warning.
