@@ -25,7 +25,6 @@
 
 namespace dp::scene {
 
-
 namespace {
 
 Vec3 direction_of_uv(const Vec2& uv, float& sin_theta) {

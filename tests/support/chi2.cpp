@@ -17,7 +17,7 @@ Vec3 dir_from(double cos_theta, double phi) {
 // Midpoint-rule integration of pdf over the cell [z0,z1] x [p0,p1] (measure dz dphi =
 // dω). The midpoint rule never evaluates on cell boundaries, where pdfs are often
 // discontinuous (the horizon z = 0).
-double integrate_cell(const DirectionPdf& pdf, double z0, double z1, double p0, double p1, int res) {
+double midpoint_cell(const DirectionPdf& pdf, double z0, double z1, double p0, double p1, int res) {
   const double hz = (z1 - z0) / res, hp = (p1 - p0) / res;
   double sum = 0;
   for (int i = 0; i < res; ++i)
@@ -27,6 +27,18 @@ double integrate_cell(const DirectionPdf& pdf, double z0, double z1, double p0, 
     }
   return sum * hz * hp;
 }
+
+// Adaptive refinement: where the 8x8 and 16x16 midpoint estimates disagree (a sharp
+// edge or peak inside the cell, e.g. a small cone light), the cell is split in four,
+// down to `depth` levels.
+double integrate_cell(const DirectionPdf& pdf, double z0, double z1, double p0, double p1, int depth) {
+  const double coarse = midpoint_cell(pdf, z0, z1, p0, p1, 8);
+  const double fine = midpoint_cell(pdf, z0, z1, p0, p1, 16);
+  if (depth <= 0 || std::abs(fine - coarse) <= 1e-4 * std::abs(fine) + 1e-12) return fine;
+  const double zm = 0.5 * (z0 + z1), pm = 0.5 * (p0 + p1);
+  return integrate_cell(pdf, z0, zm, p0, pm, depth - 1) + integrate_cell(pdf, zm, z1, p0, pm, depth - 1) +
+         integrate_cell(pdf, z0, zm, pm, p1, depth - 1) + integrate_cell(pdf, zm, z1, pm, p1, depth - 1);
+}
 }  // namespace
 
 double integrate_sphere(const DirectionPdf& pdf, int theta_res, int phi_res) {
@@ -35,7 +47,7 @@ double integrate_sphere(const DirectionPdf& pdf, int theta_res, int phi_res) {
   for (int i = 0; i < tb; ++i)
     for (int j = 0; j < pb; ++j)
       total += integrate_cell(pdf, -1.0 + 2.0 * i / tb, -1.0 + 2.0 * (i + 1) / tb, 2 * kPiD * j / pb,
-                              2 * kPiD * (j + 1) / pb, 8);
+                              2 * kPiD * (j + 1) / pb, 2);
   return total;
 }
 
@@ -61,7 +73,7 @@ Chi2Result chi2_sphere(const DirectionSampler& sample, const DirectionPdf& pdf, 
     for (int ip = 0; ip < np; ++ip) {
       const double z0 = -1.0 + 2.0 * it / nt, z1 = -1.0 + 2.0 * (it + 1) / nt;
       const double p0 = 2 * kPiD * ip / np, p1 = 2 * kPiD * (ip + 1) / np;
-      const double e = integrate_cell(pdf, z0, z1, p0, p1, 16);
+      const double e = integrate_cell(pdf, z0, z1, p0, p1, 4);
       r.integral += e;
       expected[size_t(it * np + ip)] = e * opt.samples;
     }
