@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# End-to-end checks of the deltapath CLI: outputs of render, one-line errors with
+# non-zero exit for bad input, Ctrl-C keeping a partial render, info and compare.
+# Usage: test_cli.sh path/to/deltapath  (run from the repository root)
+set -u
+bin=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+check() {  # check DESCRIPTION CONDITION...
+  local what=$1; shift
+  if "$@"; then echo "ok   - $what"; else echo "FAIL - $what"; fail=1; fi
+}
+
+# 1. A render writes EXR, PNG and a JSON sidecar with the resolved settings.
+"$bin" render scenes/cornell.yaml --spp 2 --threads 2 --quiet --set rr_depth=3 --out "$tmp/c.exr" 2>"$tmp/err"
+check "render exits 0" test $? -eq 0
+check "render writes exr/png/json" test -s "$tmp/c.exr" -a -s "$tmp/c.png" -a -s "$tmp/c.json"
+check "sidecar has settings and spp" grep -q '"rr_depth": "3"' "$tmp/c.json"
+check "sidecar not partial" grep -q '"partial": false' "$tmp/c.json"
+
+# 2. Bad input: one line on stderr naming file:line, exit code 1, no crash.
+printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resolution: [8, 8]}\nshapes:\n  - {type: sphere, center: [0,0,3], radius: -1, material: nope}\n' > "$tmp/bad.yaml"
+"$bin" render "$tmp/bad.yaml" --quiet --out "$tmp/b.exr" 2>"$tmp/err"
+code=$?
+check "bad scene exits 1 (got $code)" test $code -eq 1
+check "bad scene error is one line" test "$(wc -l < "$tmp/err")" -eq 1
+check "bad scene error names file:line" grep -q "bad.yaml:4:" "$tmp/err"
+printf 'version: 1\ncamera: [1, 2\n' > "$tmp/malformed.yaml"
+"$bin" info "$tmp/malformed.yaml" 2>"$tmp/err"
+check "malformed yaml exits 1" test $? -eq 1
+check "malformed yaml names the file" grep -q "malformed.yaml" "$tmp/err"
+"$bin" render "$tmp/none.yaml" --quiet 2>"$tmp/err"
+check "missing scene exits 1" test $? -eq 1
+"$bin" render scenes/cornell.yaml --spp 1 --quiet --set no_such_key=1 --out "$tmp/x.exr" 2>"$tmp/err"
+check "unknown setting exits 1" test $? -eq 1
+check "unknown setting is named" grep -q "no_such_key" "$tmp/err"
+"$bin" render scenes/cornell.yaml --integrator nope --quiet 2>"$tmp/err"
+check "unknown integrator exits 1" test $? -eq 1
+
+# 3. Ctrl-C stops at a tile boundary and writes what was rendered, marked partial.
+"$bin" render scenes/cornell.yaml --time 60 --threads 2 --quiet --out "$tmp/int.exr" 2>"$tmp/err" &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid
+check "interrupted render exits 0" test $? -eq 0
+check "interrupted render writes images" test -s "$tmp/int.exr" -a -s "$tmp/int.png"
+check "interrupted render is marked partial" grep -q '"partial": true' "$tmp/int.json"
+
+# 4. info and compare.
+"$bin" info scenes/cornell.yaml > "$tmp/info" 2>&1
+check "info prints caps" grep -q "has_specular=0" "$tmp/info"
+"$bin" compare "$tmp/c.exr" "$tmp/c.exr" --json > "$tmp/cmp" 2>&1
+check "compare of an image with itself has zero relMSE" grep -q '"relmse": 0' "$tmp/cmp"
+printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resolution: [8, 4]}\nlights: [{type: environment, radiance: [1, 1, 1]}]\n' > "$tmp/small.yaml"
+"$bin" render "$tmp/small.yaml" --spp 1 --quiet --out "$tmp/small.exr" 2>"$tmp/err"
+check "scene without shapes renders the environment" test $? -eq 0
+"$bin" compare "$tmp/c.exr" "$tmp/small.exr" 2>"$tmp/err"
+check "compare of different sizes exits 1" test $? -eq 1
+exit $fail
