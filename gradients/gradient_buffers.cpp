@@ -1,0 +1,34 @@
+#include "gradients/gradient_buffers.h"
+
+#include "core/error.h"
+
+namespace dp::gradients {
+
+GradientBuffers::GradientBuffers(int width, int height)
+    : m_w(width),
+      m_h(height),
+      m_primal(size_t(width) * size_t(height), Rgbd::Zero()),
+      m_dx(m_primal),
+      m_dy(m_primal),
+      m_direct(m_primal),
+      m_count(m_primal.size(), 0) {}
+
+void GradientBuffers::merge(const GradientBuffers& o) {
+  DP_CHECK(o.m_w == m_w && o.m_h == m_h, "GradientBuffers::merge: size mismatch");
+  for (size_t i = 0; i < m_primal.size(); ++i) {
+    m_primal[i] += o.m_primal[i];
+    m_dx[i] += o.m_dx[i];
+    m_dy[i] += o.m_dy[i];
+    m_direct[i] += o.m_direct[i];
+    m_count[i] += o.m_count[i];
+  }
+}
+
+core::Image GradientBuffers::normalized(const std::vector<Rgbd>& sums) const {
+  core::Image img(m_w, m_h);
+  for (size_t i = 0; i < sums.size(); ++i)
+    if (m_count[i] > 0) img[i] = (sums[i] / double(m_count[i])).cast<float>();
+  return img;
+}
+
+}  // namespace dp::gradients

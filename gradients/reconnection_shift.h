@@ -1,0 +1,55 @@
+// The G-PT hybrid shift (Kettunen et al. 2015, Sec. 5.2; reference: gpt.cpp of
+// mmanzi/gradientdomain-mitsuba, read for understanding only):
+//  * primary: the same sub-pixel position in the neighbouring pixel (Jacobian 1);
+//  * step k -> k+1 while not yet reconnected:
+//      - reconnect to the base vertex x_{k+1} if x_k, x'_k and x_{k+1} are connectable
+//        and the base sampled a non-delta lobe at x_k (Jacobian: reconnection_jacobian;
+//        a blocked segment fails with `occluded`); afterwards the offset shares every
+//        base vertex and direction (factor 1) and only re-evaluates the BSDF at x_{k+1};
+//      - else copy a Dirac lobe (same lobe at x'_k, factor 1; a missing lobe fails);
+//      - else copy the half vector in the local shading frame, reflection or refraction
+//        (jacobians.h), then trace. Invertibility (Kettunen 2015, Sec. 5.2): if the
+//        offset could have reconnected at k+1 but the base could not, the reverse shift
+//        would pick another strategy, so the shift fails (`not_invertible`);
+//      - base and offset must agree on hitting the scene or escaping (`miss`).
+//  * NEE at x_k: reconnect to the same light point (area) / direction (infinite) /
+//    position (delta light) under the same connectability rule (Jacobian as above,
+//    1 for infinite and delta lights); else copy the half vector of the light direction
+//    (reflection only) and trace to whatever emitter it reaches. A blocked shadow ray is
+//    NOT a failure: the offset NEE path exists with zero contribution and its NEE density
+//    still counts in the symmetric MIS weights.
+// Vertex classification: pathspace/classify.h with this shift's threshold (it must be
+// the threshold the base walk was built with). With `half_vector_enabled` false (scenes
+// whose caps have neither glossy nor specular BSDFs) the half-vector machinery is never
+// run: a step that would need it fails as not_invertible (it cannot occur when every
+// vertex is connectable).
+#pragma once
+
+#include "gradients/shift.h"
+#include "scene/scene.h"
+
+namespace dp::gradients {
+
+struct ReconnectionShiftOptions {
+  float threshold = 0.001f;  // pathspace::kDefaultShiftThreshold
+  bool half_vector_enabled = true;
+};
+
+class ReconnectionShift final : public Shift {
+ public:
+  ReconnectionShift(const scene::Scene& scene, const ReconnectionShiftOptions& options)
+      : m_scene(scene), m_opt(options) {}
+  void shift(const pathspace::Path& base, const Vec2& raster_offset, ShiftResult& out) const override;
+  std::string name() const override { return "reconnection"; }
+  const ReconnectionShiftOptions& options() const { return m_opt; }
+
+ private:
+  // Returns the status of offset vertex k+1 (ok: out.path has k+2 vertices).
+  ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const;
+  void shift_nee(const pathspace::Path& base, int k, ShiftResult& out) const;
+  ShiftStatus trace_next(const pathspace::Path& base, int k, ShiftResult& out) const;
+  const scene::Scene& m_scene;
+  ReconnectionShiftOptions m_opt;
+};
+
+}  // namespace dp::gradients
