@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "integrators/integrator.h"
+#include "integrators/gpt/gpt_integrator.h"
 #include "integrators/path/path_integrator.h"
 
 namespace dp::integrators {
@@ -22,6 +23,7 @@ struct Entry {
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
+      {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
   };
   return kRegistry;
 }

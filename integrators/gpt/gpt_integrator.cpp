@@ -1,0 +1,100 @@
+#include "integrators/gpt/gpt_integrator.h"
+
+#include "core/rng.h"
+#include "core/timer.h"
+#include "gradients/gradient_buffers.h"
+#include "integrators/gpt/gpt_tracer.h"
+#include "integrators/tile_scheduler.h"
+#include "pathspace/sample_stream.h"
+#include "reconstruct/solve.h"
+
+namespace dp::integrators {
+
+RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
+  const auto& cam = scene.camera();
+  const int w = cam.width(), h = cam.height();
+  const int threads = resolve_threads(options);
+  std::vector<gradients::GradientBuffers> buffers(size_t(threads), gradients::GradientBuffers(w, h));
+  std::vector<core::Stats> thread_stats(static_cast<size_t>(threads));
+  const GptTracer tracer(scene, m_settings, options.max_depth);
+
+  auto tile_fn = [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
+    pathspace::IndependentStream stream(rng);
+    GptCounters counters;
+    auto& buf = buffers[size_t(thread)];
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        for (int s = 0; s < spp; ++s) tracer.sample(x, y, stream, buf, counters);
+    counters.flush(thread_stats[size_t(thread)]);
+  };
+
+  // Whole passes only: the symmetric pair estimates need equal counts in both pixels.
+  core::Timer timer;
+  RenderOptions pass_opt = options;
+  pass_opt.time_budget = 0;
+  int64_t passes = 0;
+  bool partial = false;
+  if (options.time_budget > 0) {
+    pass_opt.spp = 1;
+    pass_opt.quiet = true;
+    do {
+      pass_opt.seed = core::mix64(options.seed * 0x9e3779b97f4a7c15ull + uint64_t(passes));
+      const ScheduleResult sched = run_tiles(w, h, pass_opt, "gpt", tile_fn);
+      ++passes;
+      if (sched.partial) partial = true;
+    } while (!partial && timer.seconds() < options.time_budget && !(options.stop && options.stop->load()));
+  } else {
+    const ScheduleResult sched = run_tiles(w, h, pass_opt, "gpt", tile_fn);
+    passes = 1;
+    partial = sched.partial;
+  }
+  const double render_seconds = timer.seconds();
+
+  gradients::GradientBuffers total(w, h);
+  for (const auto& b : buffers) total.merge(b);
+  RenderResult result;
+  for (const auto& s : thread_stats) result.stats.merge(s);
+
+  const core::Image primal = total.primal(), dx = total.dx(), dy = total.dy(), direct = total.direct();
+  // Screened Poisson reconstruction without the direct layer (Lehtinen 2013, Eq. 8; Kettunen
+  // 2015, Sec. 6), which is added back afterwards.
+  const reconstruct::Problem problem = reconstruct::make_grid_problem(primal, dx, dy, m_settings.alpha);
+  reconstruct::SolveOptions sopt;
+  sopt.threads = threads;
+  core::Timer solve_timer;
+  core::Image l2 = reconstruct::solve_l2(problem, sopt).image;
+  const double l2_seconds = solve_timer.seconds();
+  solve_timer.reset();
+  core::Image l1 = reconstruct::solve_l1(problem, sopt).image;
+  const double l1_seconds = solve_timer.seconds();
+  l2 += direct;
+  l1 += direct;
+  core::Image primal_full = primal;
+  primal_full += direct;
+
+  result.layers.push_back({"", m_settings.reconstruction == "l2" ? l2 : l1});
+  result.layers.push_back({"recon_l1", std::move(l1)});
+  result.layers.push_back({"recon_l2", std::move(l2)});
+  result.layers.push_back({"primal", std::move(primal_full)});
+  result.layers.push_back({"dx", dx});
+  result.layers.push_back({"dy", dy});
+  result.layers.push_back({"direct", direct});
+  result.wall_seconds = timer.seconds();
+  int64_t lo = total.samples(0, 0), hi = lo;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      lo = std::min(lo, total.samples(x, y));
+      hi = std::max(hi, total.samples(x, y));
+    }
+  result.min_spp = lo;
+  result.max_spp = hi;
+  result.partial = partial;
+  result.info["passes"] = passes;
+  result.info["render_seconds"] = render_seconds;
+  result.info["solve_l2_seconds"] = l2_seconds;
+  result.info["solve_l1_seconds"] = l1_seconds;
+  result.info["settings"] = m_json;
+  return result;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,26 @@
+// `--integrator gpt`: gradient-domain path tracing (Kettunen et al. 2015) over tiles.
+// Renders whole passes (every pixel the same sample count, which the symmetric pair
+// estimates need); a time budget runs 1-spp passes until it is used up. Output layers:
+// "" (RGB: the reconstruction chosen by `reconstruction`, default L1), recon_l1, recon_l2,
+// primal (MIS-weighted primal + direct), dx, dy (forward differences, direct light
+// excluded) and direct (emitters seen directly from the camera: never shifted, kept out
+// of the Poisson solve and added to both reconstructions).
+#pragma once
+
+#include "integrators/gpt/gpt_settings.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+class GptIntegrator final : public Integrator {
+ public:
+  explicit GptIntegrator(Settings& settings) : m_settings(GptSettings::read(settings)), m_json(settings.to_json()) {}
+  std::string name() const override { return "gpt"; }
+  RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+
+ private:
+  GptSettings m_settings;
+  core::Json m_json;
+};
+
+}  // namespace dp::integrators

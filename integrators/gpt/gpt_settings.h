@@ -1,0 +1,22 @@
+// Settings of gradient-domain path tracing (`--integrator gpt`, Kettunen et al. 2015).
+// Each key is read with its default and documentation in gpt_settings.cpp and written
+// back into the sidecar.
+#pragma once
+
+#include <string>
+
+#include "integrators/settings.h"
+
+namespace dp::integrators {
+
+struct GptSettings {
+  int rr_depth = 5;               // Russian roulette after this many segments (as PT)
+  bool nee = true;                // next-event estimation (as PT)
+  float shift_threshold = 0.001f; // roughness <= threshold: glossy/specular (half-vector copy)
+  float alpha = 0.2f;             // screened Poisson weight of the primal
+  std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
+
+  static GptSettings read(Settings& s);
+};
+
+}  // namespace dp::integrators
