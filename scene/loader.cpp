@@ -1,5 +1,5 @@
 // Front-end dispatch by file extension (case-insensitive): .yaml/.yml -> YAML format
-// (SCENE_FORMAT.md), .xml -> Mitsuba importer (not available yet).
+// (SCENE_FORMAT.md), .xml -> Mitsuba importer (mitsuba_loader.h).
 #include "scene/loader.h"
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "scene/mitsuba_loader.h"
 
 namespace dp::scene {
 
@@ -14,7 +15,7 @@ std::unique_ptr<Scene> load_scene(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".yaml" || ext == ".yml") return load_scene_yaml(path);
-  if (ext == ".xml") throw Error("Mitsuba XML import is not available yet", path);
+  if (ext == ".xml") return load_scene_mitsuba(path);
   throw IoError("unknown scene file type '" + ext + "' (expected .yaml, .yml or .xml)", path);
 }
 
