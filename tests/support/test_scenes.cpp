@@ -12,6 +12,19 @@ std::unique_ptr<scene::TriangleMesh> quad(const Vec3& a, const Vec3& b, const Ve
   m->finalize();
   return m;
 }
+
+// Square-image camera, then commit: the last step of every test scene.
+std::unique_ptr<scene::Scene> finish(std::unique_ptr<scene::Scene> s, const Vec3& position, const Vec3& look_at,
+                                     float fov_deg, int resolution) {
+  scene::CameraDesc cam;
+  cam.position = position;
+  cam.look_at = look_at;
+  cam.fov_deg = fov_deg;
+  cam.width = cam.height = resolution;
+  s->set_camera(cam);
+  s->commit();
+  return s;
+}
 }  // namespace
 
 double furnace_radiance(float albedo, float emission, float point_intensity) {
@@ -28,14 +41,7 @@ std::unique_ptr<scene::Scene> furnace_sphere(float albedo, float emission, float
   s->add_shape(std::move(sphere), Rgb::Constant(emission));
   if (point_intensity > 0)
     s->add_emitter(std::make_unique<scene::PointEmitter>(Vec3(0, 0, 0), Rgb::Constant(point_intensity)));
-  scene::CameraDesc cam;
-  cam.position = Vec3(0.1f, 0.2f, 0.3f);
-  cam.look_at = Vec3(0.5f, 0.1f, -1.0f);
-  cam.fov_deg = 90;
-  cam.width = cam.height = resolution;
-  s->set_camera(cam);
-  s->commit();
-  return s;
+  return finish(std::move(s), Vec3(0.1f, 0.2f, 0.3f), Vec3(0.5f, 0.1f, -1.0f), 90.0f, resolution);
 }
 
 std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution) {
@@ -62,14 +68,7 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   auto sb = std::make_unique<scene::Sphere>(Vec3(0.45f, -0.6f, 0.2f), 0.4f);
   sb->material = sphere_b ? s->add_bsdf(sphere_b) : white;
   s->add_shape(std::move(sb));
-  scene::CameraDesc cam;
-  cam.position = Vec3(0, 0, 0.95f);
-  cam.look_at = Vec3(0, 0, -1);
-  cam.fov_deg = 80;
-  cam.width = cam.height = resolution;
-  s->set_camera(cam);
-  s->commit();
-  return s;
+  return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
 }  // namespace dp::test
