@@ -2,7 +2,9 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/cmd_experiment.h"
 #include "apps/cmd_reconstruct.h"
+#include "apps/cmd_stress.h"
 #include "apps/commands.h"
 #include "core/error.h"
 
@@ -13,6 +15,8 @@ int main(int argc, char** argv) {
   dp::apps::register_info(app);
   dp::apps::register_compare(app);
   dp::apps::register_reconstruct(app);
+  dp::apps::register_experiment(app);
+  dp::apps::register_stress(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
