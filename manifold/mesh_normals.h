@@ -1,0 +1,40 @@
+// Smooth vertex normals for triangle meshes that have none, estimated with CGAL (the
+// only CGAL user in Deltapath; CGAL stays inside mesh_normals.cpp). With vertex normals
+// present, scene::TriangleMesh interpolates them and its surface points (and
+// manifold::local_frame) carry the shading-normal derivatives dn/du, dn/dv that manifold
+// walks need; a mesh without normals is flat shaded and every specular chain on it sees
+// dn = 0 (faceted caustics).
+//
+// To be called once at load time, only for meshes whose material needs it
+// (needs_vertex_normals). NOT yet wired into the scene loaders: that integration point
+// (after the mesh is read, before Scene::commit) belongs to the loader owners.
+#pragma once
+
+#include <cstddef>
+
+#include "scene/bsdf.h"
+#include "scene/shape.h"
+
+namespace dp::manifold {
+
+enum class NormalMethod {
+  angle_weighted,  // CGAL Polygon Mesh Processing compute_vertex_normals
+  jet_fit          // CGAL jet_estimate_normals (local quadric fit over k neighbours),
+                   // oriented by the angle-weighted normals; better on curved surfaces
+};
+
+struct NormalEstimation {
+  NormalMethod method = NormalMethod::jet_fit;
+  unsigned jet_neighbors = 12;  // k nearest welded vertices for the jet fit
+};
+
+// True if the mesh has no normals and its material has a delta or glossy lobe (a
+// specular chain through it needs smooth normals and their derivatives).
+bool needs_vertex_normals(const scene::TriangleMesh& mesh, const scene::Bsdf* material);
+
+// Fills mesh.normals (one per vertex, unit, on the side of the triangle winding).
+// Vertices with identical positions are welded first so split uv seams stay smooth.
+// Returns the number of distinct (welded) positions. Existing normals are replaced.
+size_t estimate_vertex_normals(scene::TriangleMesh& mesh, const NormalEstimation& opts = {});
+
+}  // namespace dp::manifold
