@@ -54,13 +54,14 @@ void PathBuilder::build_from_raster(const Vec2& raster, SampleStream& stream, Pa
   cv.hit.ng = cam.forward();
   cv.hit.shading = Frame::from_normal(cam.forward());
   Ray ray = cam.generate_ray(raster);
+  int from = -1;  // index of the vertex the current ray leaves (-1: the camera)
   cv.wo_world = ray.d;
   cv.pdf = 1;  // W_e / p of the raster sample cancel (box filter): unit ratio
   cv.lobe = scene::kDiffuseReflection;  // marks "continued"
   cv.connectable = false;
   Rgb beta = Rgb::Ones();
   for (int depth = 1; depth <= m_opt.max_depth; ++depth) {
-    const auto hit = m_scene.intersect(ray);
+    const auto hit = from >= 0 ? trace_from(m_scene, path[from].hit, ray.d) : m_scene.intersect(ray);
     if (!hit) {
       Vertex& ev = path.append(Vertex());
       ev.kind = VertexKind::environment;
@@ -104,7 +105,8 @@ void PathBuilder::build_from_raster(const Vec2& raster, SampleStream& stream, Pa
     v.pdf = double(bs->pdf);
     v.f_cos = bs->weight * bs->pdf;
     v.rr = q;
-    ray = m_scene.spawn_ray(*hit, wo);
+    ray = continue_ray(m_scene, *hit, wo);
+    from = k;
   }
 }
 
