@@ -29,6 +29,10 @@ class GradientBuffers {
   void merge(const GradientBuffers& other);
 
   int64_t samples(int x, int y) const { return m_count[index(x, y)]; }
+  // Raw (unnormalized) sums, e.g. to inspect what one sample splatted.
+  const Rgbd& primal_sum(int x, int y) const { return m_primal[index(x, y)]; }
+  const Rgbd& dx_sum(int x, int y) const { return m_dx[index(x, y)]; }
+  const Rgbd& dy_sum(int x, int y) const { return m_dy[index(x, y)]; }
   core::Image primal() const { return normalized(m_primal); }
   core::Image dx() const { return normalized(m_dx); }
   core::Image dy() const { return normalized(m_dy); }
