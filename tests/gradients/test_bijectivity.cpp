@@ -8,6 +8,7 @@
 
 #include "gradients/reconnection_shift.h"
 #include "pathspace/path_builder.h"
+#include "pathspace/scatter.h"
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
@@ -102,6 +103,168 @@ TEST_CASE("shift bijectivity T^-1(T(x)) = x on diffuse, glossy, mirror, glass an
     if (std::string(cs.name) == "glossy" || std::string(cs.name) == "mixed") REQUIRE(c.half_vector > 10);
     if (std::string(cs.name) == "mirror" || std::string(cs.name) == "glass") REQUIRE(c.dirac > 10);
   }
+}
+
+namespace {
+// An open scene (floor, two spheres, constant sky): base and offset disagree on escaping
+// at silhouettes and after bounces, so `miss` failures occur (the lit box is closed).
+std::unique_ptr<scene::Scene> open_scene(scene::BsdfPtr a, scene::BsdfPtr b, int res) {
+  auto s = std::make_unique<scene::Scene>();
+  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb::Constant(0.6f)))));
+  auto floor = std::make_unique<scene::TriangleMesh>();
+  floor->positions = {Vec3(-2, -1, -2), Vec3(2, -1, -2), Vec3(2, -1, 2), Vec3(-2, -1, 2)};
+  floor->triangles = {{0, 2, 1}, {0, 3, 2}};
+  floor->finalize();
+  floor->material = white;
+  s->add_shape(std::move(floor));
+  auto sa = std::make_unique<scene::Sphere>(Vec3(-0.5f, -0.5f, 0.0f), 0.5f);
+  sa->material = a ? s->add_bsdf(a) : white;
+  s->add_shape(std::move(sa));
+  auto sb = std::make_unique<scene::Sphere>(Vec3(0.6f, -0.6f, 0.3f), 0.4f);
+  sb->material = b ? s->add_bsdf(b) : white;
+  s->add_shape(std::move(sb));
+  s->add_emitter(std::make_unique<scene::EnvironmentEmitter>(Rgb::Constant(1.0f)));
+  scene::CameraDesc cam;
+  cam.position = Vec3(0, 0.6f, 3.0f);
+  cam.look_at = Vec3(0, -0.6f, 0);
+  cam.fov_deg = 50;
+  cam.width = cam.height = res;
+  s->set_camera(cam);
+  s->commit();
+  return s;
+}
+
+// Failure bijectivity: if T(x) fails at vertex a, the path y that pixel j's walk would
+// have produced there -- the offset prefix y_0..y_{a-1} continued by the ray the shift
+// traced (half-vector / Dirac copy / primary: it missed or landed on a vertex the
+// reverse would reconnect to) or, for an occluded reconnection, by the ray toward x_a
+// that hits the occluder -- must not be shifted back onto x: T^-1(y) fails too or
+// reaches another vertex. (zero_contribution failures have no such y: pixel j's walk
+// cannot sample it. Strategy-undefined not_invertible failures -- no direction exists --
+// likewise.) Positive control: for successful shifts the same construction (y = the
+// offset prefix up to x_2) IS shifted back onto x, so the predicate can fail.
+struct FailureCounts {
+  int checked[gradients::kShiftStatusCount] = {};
+  int reverse_reproduced = 0;
+  int controls = 0, controls_reproduced = 0;
+};
+
+FailureCounts failure_roundtrip(const scene::Scene& s, float threshold, int samples) {
+  using gradients::ShiftStatus;
+  using gradients::StepKind;
+  pathspace::WalkOptions wo;
+  wo.max_depth = 8;
+  wo.shift_threshold = threshold;
+  const pathspace::PathBuilder builder(s, wo);
+  const gradients::ReconnectionShift shift(s, {threshold, true});
+  core::Rng rng(5, 17);
+  pathspace::IndependentStream stream(rng);
+  pathspace::Path x, y;
+  gradients::ShiftResult fwd, rev;
+  FailureCounts c;
+  const int res = s.camera().width();
+  const float tol = 1e-4f;
+  auto reproduces = [&](int a) {
+    if (rev.alive != a + 1 || rev.path[a].kind != x[a].kind) return false;
+    if (x[a].kind == pathspace::VertexKind::environment) return (rev.path[a].wo_world - x[a].wo_world).norm() < tol;
+    return (rev.path[a].p() - x[a].p()).norm() < tol;
+  };
+  for (int i = 0; i < samples; ++i) {
+    builder.build(i % (res - 1), (i / (res - 1)) % res, stream, x);
+    shift.shift(x, Vec2(1, 0), fwd);
+    const ShiftStatus st = fwd.status;
+    if (fwd.alive >= 3 && x.size() >= 3) {  // positive control on the successful prefix x_0..x_2
+      y.clear();
+      y.raster = fwd.path.raster;
+      for (int k = 0; k < 3; ++k) y.append(fwd.path[k]);
+      for (auto& l : y.nee) l.valid = false;
+      shift.shift(y, Vec2(-1, 0), rev);
+      ++c.controls;
+      c.controls_reproduced += reproduces(2);
+    }
+    if (st == ShiftStatus::ok || st == ShiftStatus::zero_contribution) continue;
+    const int a = fwd.alive;  // the failing vertex
+    const auto kind = a >= 2 ? fwd.step[size_t(a - 1)] : StepKind::primary;
+    const bool traced = (st == ShiftStatus::miss || st == ShiftStatus::not_invertible) &&
+                        (a == 1 || kind == StepKind::half_vector || kind == StepKind::dirac);
+    if (!traced && st != ShiftStatus::occluded) continue;  // no direction: strategy undefined
+    // The would-be offset y = (y_0 .. y_{a-1}, z).
+    y.clear();
+    y.raster = fwd.path.raster;
+    for (int k = 0; k < a; ++k) y.append(fwd.path[k]);
+    Ray ray;
+    std::optional<scene::SurfaceHit> z;
+    if (a == 1) {
+      ray = s.camera().generate_ray(y.raster);
+      z = s.intersect(ray);
+    } else {
+      pathspace::Vertex& yv = y[a - 1];
+      if (st == ShiftStatus::occluded) {  // the reconnection direction, as the walk would sample it
+        const Vec3 dir = x[a].kind == pathspace::VertexKind::environment ? x[a - 1].wo_world
+                                                                         : Vec3((x[a].p() - yv.p()).normalized());
+        yv.lobe = x[a - 1].lobe;
+        yv.wo_world = dir;
+        yv.wo = yv.hit.shading.to_local(dir);
+      }
+      ray = pathspace::continue_ray(s, yv.hit, yv.wo_world);
+      z = pathspace::trace_from(s, yv.hit, yv.wo_world);
+    }
+    pathspace::Vertex zv;
+    if (z) {
+      zv.kind = pathspace::VertexKind::surface;
+      zv.hit = *z;
+      zv.connectable = pathspace::is_connectable(z->bsdf, threshold);
+      zv.wi = z->shading.to_local(-ray.d);
+      zv.emission = pathspace::emitted(s, zv, -ray.d);
+    } else {
+      zv.kind = pathspace::VertexKind::environment;
+      zv.wo_world = ray.d;
+      zv.hit.p = ray.o;
+      zv.connectable = true;
+    }
+    y.append(zv);
+    for (auto& l : y.nee) l.valid = false;
+    shift.shift(y, Vec2(-1, 0), rev);
+    ++c.checked[size_t(st)];
+    c.reverse_reproduced += reproduces(a);
+  }
+  return c;
+}
+}  // namespace
+
+TEST_CASE("failed shifts fail in the reverse direction (miss, occluded, not_invertible)", "[unit]") {
+  struct Case {
+    const char* name;
+    scene::BsdfPtr a, b;
+    float threshold;
+    bool open;
+  };
+  const Case cases[] = {{"diffuse", nullptr, nullptr, 0.001f, false},
+                        {"glossy", glossy(), glossy(), 0.1f, false},
+                        {"mirror", mirror(), nullptr, 0.001f, false},
+                        {"glass", glass(), nullptr, 0.001f, false},
+                        {"mixed", glossy(), glass(), 0.1f, false},
+                        {"open", glossy(), glass(), 0.1f, true}};
+  int total[gradients::kShiftStatusCount] = {};
+  for (const auto& cs : cases) {
+    const auto s = cs.open ? open_scene(cs.a, cs.b, 24) : test::lit_box(cs.a, cs.b, 24);
+    const FailureCounts c = failure_roundtrip(*s, cs.threshold, 6000);
+    std::printf("failure bijectivity %-8s checked: miss %d occluded %d not_invertible %d; reverse reproduced x: %d "
+                "(positive controls %d/%d reproduced)\n",
+                cs.name, c.checked[size_t(gradients::ShiftStatus::miss)],
+                c.checked[size_t(gradients::ShiftStatus::occluded)],
+                c.checked[size_t(gradients::ShiftStatus::not_invertible)], c.reverse_reproduced,
+                c.controls_reproduced, c.controls);
+    INFO(cs.name);
+    REQUIRE(c.reverse_reproduced == 0);
+    REQUIRE(c.controls > 100);
+    REQUIRE(c.controls_reproduced == c.controls);
+    for (int k = 0; k < gradients::kShiftStatusCount; ++k) total[k] += c.checked[k];
+  }
+  // Every checked cause occurred (the test exercises them).
+  REQUIRE(total[size_t(gradients::ShiftStatus::miss)] > 10);
+  REQUIRE(total[size_t(gradients::ShiftStatus::occluded)] > 10);
+  REQUIRE(total[size_t(gradients::ShiftStatus::not_invertible)] > 10);
 }
 
 TEST_CASE("IdentityShift returns the base path with Jacobian 1", "[unit]") {
