@@ -20,11 +20,12 @@ namespace dp::manifold {
 enum class NormalMethod {
   angle_weighted,  // CGAL Polygon Mesh Processing compute_vertex_normals
   jet_fit          // CGAL jet_estimate_normals (local quadric fit over k neighbours),
-                   // oriented by the angle-weighted normals; better on curved surfaces
+                   // oriented by the angle-weighted normals; needs neighbourhoods that
+                   // surround the vertex (fails at poles of lat-long spheres)
 };
 
 struct NormalEstimation {
-  NormalMethod method = NormalMethod::jet_fit;
+  NormalMethod method = NormalMethod::angle_weighted;
   unsigned jet_neighbors = 12;  // k nearest welded vertices for the jet fit
 };
 

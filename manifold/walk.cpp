@@ -11,9 +11,13 @@ namespace {
 
 constexpr double kGrazingRay = 1e-9;
 
-// Scatters the unit direction w_a (pointing away from the vertex, toward where the ray
-// came from) about the microfacet normal m encoded by the vertex's target; returns the
-// outgoing unit direction. Inverse of the constraint of constraints.h.
+double walk_scale(const Chain& c, const Vec3d& target) {
+  return std::max(target.cwiseAbs().maxCoeff(), (target - c.v[size_t(c.n() - 1)].p()).norm());
+}
+
+}  // namespace
+
+// Inverse of the constraint of constraints.h.
 WalkStatus scatter(const ChainVertex& v, const Vec3d& w_a, Vec3d& w_b) {
   const Vec2d& c = v.target;
   const double c2 = c.squaredNorm();
@@ -44,12 +48,6 @@ WalkStatus scatter(const ChainVertex& v, const Vec3d& w_a, Vec3d& w_b) {
   if (same_side != (v.type == Interaction::reflection)) return WalkStatus::grazing;
   return WalkStatus::ok;
 }
-
-double walk_scale(const Chain& c, const Vec3d& target) {
-  return std::max(target.cwiseAbs().maxCoeff(), (target - c.v[size_t(c.n() - 1)].p()).norm());
-}
-
-}  // namespace
 
 WalkStatus retrace(const scene::Scene& scene, const Chain& base, const Vec3d& x1, Chain& out) {
   const int n = base.n();

@@ -40,6 +40,12 @@ struct WalkResult {
 // surface. `out` receives the new chain (types, etas, targets, shapes kept).
 WalkStatus retrace(const scene::Scene& scene, const Chain& base, const Vec3d& x1, Chain& out);
 
+// Scatters w_a (unit, pointing from the vertex toward where the light came from) about
+// the microfacet normal encoded by the vertex's target, in its local frame: reflection,
+// or refraction with the vertex's eta (sides from the geometric normal). Fails on TIR,
+// index-matched refraction, grazing directions, or a result on the wrong side.
+WalkStatus scatter(const ChainVertex& v, const Vec3d& w_a, Vec3d& w_b);
+
 WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& target, const WalkSettings& settings,
                 WalkStats* stats = nullptr);
 
