@@ -17,6 +17,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter  # noqa: E402
 
 FIXED = ["name", "budget", "seed", "wall_time", "spp"]
 
@@ -74,6 +75,10 @@ def main():
                         fmt="none", ecolor=line.get_color(), capsize=3, linewidth=1)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        seconds = FuncFormatter(lambda v, _pos: f"{v:g}")  # 0.5, 2, 20 rather than 2x10^0
+        ax.xaxis.set_major_formatter(seconds)
+        ax.xaxis.set_minor_formatter(seconds)
+        ax.tick_params(axis="x", which="minor", labelsize="x-small")
         ax.set_xlabel("wall-clock time [s]")
         ax.set_ylabel(metric)
         ax.grid(True, which="both", alpha=0.3)
