@@ -63,6 +63,10 @@ class Bsdf {
   virtual std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float u_lobe,
                                            const Vec2& u) const = 0;
   virtual float roughness() const = 0;
+  // Phong exponent n of a (normalized modified) Phong lobe, 0 for every other BSDF; the
+  // shift-mapping classification treats n above a threshold as glossy
+  // (SCENE_FORMAT.md: "roughness < 0.05 or phong exponent > 100 is not connectable").
+  virtual float phong_exponent() const { return 0.0f; }
   virtual uint32_t lobes() const = 0;  // union of LobeFlags
   virtual std::string name() const = 0;
   // Diffuse-like reflectance for feature buffers (structure-adaptive kernels).

@@ -58,6 +58,7 @@ class MaskBsdf final : public Bsdf {
   }
 
   float roughness() const override { return m_inner->roughness(); }
+  float phong_exponent() const override { return m_inner->phong_exponent(); }
   uint32_t lobes() const override { return m_inner->lobes() | kNull; }
   std::string name() const override { return "mask(" + m_inner->name() + ")"; }
   Rgb albedo(const BsdfContext& ctx) const override { return m_opacity->eval(ctx.uv) * m_inner->albedo(ctx); }

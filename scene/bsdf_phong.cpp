@@ -61,6 +61,7 @@ class PhongBsdf final : public Bsdf {
   float roughness() const override {
     return max_component(m_ks->max()) > 0.0f ? std::sqrt(2.0f / (2.0f + m_n)) : kDiffuseRoughness;
   }
+  float phong_exponent() const override { return max_component(m_ks->max()) > 0.0f ? m_n : 0.0f; }
   uint32_t lobes() const override {
     uint32_t l = 0;
     if (max_component(m_kd->max()) > 0.0f) l |= kDiffuseReflection;

@@ -30,6 +30,7 @@ class TwoSidedBsdf final : public Bsdf {
   }
 
   float roughness() const override { return m_inner->roughness(); }
+  float phong_exponent() const override { return m_inner->phong_exponent(); }
   uint32_t lobes() const override { return m_inner->lobes(); }
   std::string name() const override { return "twosided(" + m_inner->name() + ")"; }
   Rgb albedo(const BsdfContext& ctx) const override { return m_inner->albedo(ctx); }
