@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "gradients/jacobians.h"
+#include "gradients/shift_helpers.h"
 #include "pathspace/classify.h"
 #include "pathspace/scatter.h"
 
@@ -14,28 +15,10 @@ using pathspace::Vertex;
 using pathspace::VertexKind;
 
 namespace {
-Vec3d d3(const Vec3& v) { return v.cast<double>(); }
-
-bool wi_consistent(const Vertex& v) {
-  return pathspace::consistent_side(v.hit, v.hit.shading.to_world(v.wi), v.wi.z());
-}
-
 // Shadow test of a light sample seen from surface point `hit`.
 bool light_visible(const scene::Scene& scene, const scene::SurfaceHit& hit, const LightSample& ls) {
   return std::isfinite(ls.dist) ? !scene.occluded(scene.spawn_segment(hit, ls.p))
                                 : !scene.occluded(scene.spawn_ray(hit, ls.w));
-}
-
-// Sets the scattering record of offset vertex v toward local direction wo.
-void set_scatter(Vertex& v, const Vertex& base, const Vec3& wo, const Vec3& wo_world, const Rgb& f_cos, double pdf) {
-  v.lobe = base.lobe;
-  v.u_lobe = base.u_lobe;
-  v.eta = base.eta;
-  v.rr = base.rr;  // Russian roulette follows the base (Kettunen 2015, Sec. 5.3)
-  v.wo = wo;
-  v.wo_world = wo_world;
-  v.f_cos = f_cos;
-  v.pdf = pdf;
 }
 }  // namespace
 
@@ -51,10 +34,12 @@ void ReconnectionShift::shift(const Path& base, const Vec2& raster_offset, Shift
   for (int k = 0; k < n; ++k) {
     if (k >= 1 && base.nee[size_t(k)].valid) shift_nee(base, k, out);
     if (k + 1 >= n) break;
-    const ShiftStatus s = step(base, k, out);
-    if (s != ShiftStatus::ok) {
-      out.status = s;
-      return;
+    if (o.size() < k + 2) {  // a chain step (ManifoldShift) may already have made x'_{k+1}
+      const ShiftStatus s = step(base, k, out);
+      if (s != ShiftStatus::ok) {
+        out.status = s;
+        return;
+      }
     }
     out.alive = k + 2;
   }

@@ -35,7 +35,7 @@ struct ReconnectionShiftOptions {
   bool half_vector_enabled = true;
 };
 
-class ReconnectionShift final : public Shift {
+class ReconnectionShift : public Shift {
  public:
   ReconnectionShift(const scene::Scene& scene, const ReconnectionShiftOptions& options)
       : m_scene(scene), m_opt(options) {}
@@ -43,9 +43,12 @@ class ReconnectionShift final : public Shift {
   std::string name() const override { return "reconnection"; }
   const ReconnectionShiftOptions& options() const { return m_opt; }
 
- private:
-  // Returns the status of offset vertex k+1 (ok: out.path has k+2 vertices).
-  ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const;
+ protected:
+  // Makes the direction leaving x'_k and offset vertex x'_{k+1}; returns its status (ok:
+  // out.path has k+2 vertices). A derived shift may make several vertices at once (a
+  // specular chain, manifold_shift.h): the loop in shift() then skips the steps whose
+  // vertex already exists, and still shifts each vertex's NEE sample.
+  virtual ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const;
   void shift_nee(const pathspace::Path& base, int k, ShiftResult& out) const;
   ShiftStatus trace_next(const pathspace::Path& base, int k, ShiftResult& out) const;
   const scene::Scene& m_scene;

@@ -24,6 +24,7 @@ const char* to_string(StepKind k) {
     case StepKind::nee_reconnect: return "nee_reconnect";
     case StepKind::nee_half_vector: return "nee_half_vector";
     case StepKind::nee_copy: return "nee_copy";
+    case StepKind::manifold: return "manifold";
   }
   return "?";
 }
@@ -38,6 +39,9 @@ void ShiftResult::reset(int n) {
   status = ShiftStatus::ok;
   alive = 0;
   reconnected = -1;
+  walk_status = -1;
+  walk_iterations = 0;
+  walk_traces = 0;
 }
 
 double ShiftResult::prefix_jacobian(int k) const {

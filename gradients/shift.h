@@ -30,8 +30,11 @@ constexpr int kShiftStatusCount = 5;
 const char* to_string(ShiftStatus s);
 
 // How one direction of the offset was produced (for statistics and tests).
-enum class StepKind : uint8_t { none, primary, reconnect, half_vector, dirac, copy, nee_reconnect, nee_half_vector, nee_copy };
-constexpr int kStepKindCount = 9;
+// manifold: a segment of a specular chain re-solved by a manifold walk (manifold_shift.h).
+enum class StepKind : uint8_t {
+  none, primary, reconnect, half_vector, dirac, copy, nee_reconnect, nee_half_vector, nee_copy, manifold
+};
+constexpr int kStepKindCount = 10;
 const char* to_string(StepKind k);
 
 struct ShiftResult {
@@ -44,6 +47,12 @@ struct ShiftResult {
   ShiftStatus status = ShiftStatus::ok;
   int alive = 0;
   int reconnected = -1;  // index of the base vertex the offset rejoined, -1 if none
+  // The manifold walk of this shift, if any (at most one: the offset rejoins the base at
+  // the chain's end): status (manifold::WalkStatus as an integer, -1 = no walk),
+  // iterations and chain re-traces, for the integrator's manifold statistics.
+  int walk_status = -1;
+  int walk_iterations = 0;
+  int64_t walk_traces = 0;
 
   void reset(int n);
   bool vertex_ok(int k) const { return k < alive; }

@@ -1,0 +1,192 @@
+#include "gradients/manifold_shift.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gradients/shift_helpers.h"
+#include "manifold/constraints.h"
+#include "manifold/local_geometry.h"
+#include "pathspace/classify.h"
+
+namespace dp::gradients {
+
+using manifold::Chain;
+using manifold::WalkStatus;
+using pathspace::Path;
+using pathspace::Vertex;
+using pathspace::VertexKind;
+
+namespace {
+
+Chain reversed(const Chain& c) {
+  Chain r = c;
+  std::reverse(r.v.begin(), r.v.end());
+  return r;
+}
+
+bool is_refraction(const Vertex& v) { return v.wi.z() * v.wo.z() < 0.0f; }
+
+// A chain vertex: every condition here depends only on the vertex's shape (material,
+// emitter) and its sampled lobe, which base and offset share.
+bool specular_chain_vertex(const Vertex& v) {
+  return v.kind == VertexKind::surface && v.hit.bsdf && v.hit.bsdf->is_purely_delta() && v.delta_lobe() &&
+         !v.hit.emitter && !(is_refraction(v) && v.eta == 1.0f);
+}
+
+ShiftStatus shift_status(WalkStatus s) {
+  switch (s) {
+    case WalkStatus::ok: return ShiftStatus::ok;
+    case WalkStatus::miss:
+    case WalkStatus::different_object: return ShiftStatus::occluded;
+    default: return ShiftStatus::not_invertible;
+  }
+}
+
+// |cos| at the chain's end (geometric normal) of the segment toward its neighbour.
+double end_cosine(const Chain& c) {
+  const auto& end = c.v[size_t(c.n())];
+  const Vec3d w = (c.v[size_t(c.n() - 1)].p() - end.p()).normalized();
+  return std::abs(w.dot(end.f.ng));
+}
+
+}  // namespace
+
+WalkStatus manifold_shift_jacobian(const Chain& base, const Chain& offset, double& J) {
+  // Jakob & Marschner 2012, Sec. 4.3 (generalized geometry term); Manzi et al. 2015,
+  // Sec. 4: d w_b / dA_c = G(b <-> c) / |cos theta_b| for both paths, same c.
+  double G0 = 0, G1 = 0;
+  WalkStatus st = manifold::generalized_geometry(base, G0);
+  if (st != WalkStatus::ok) return st;
+  st = manifold::generalized_geometry(offset, G1);
+  if (st != WalkStatus::ok) return st;
+  const double c0 = end_cosine(base), c1 = end_cosine(offset);
+  if (!(G0 > 0.0) || !(c1 > 0.0) || !(c0 > 0.0)) return WalkStatus::grazing;
+  J = (G1 / c1) / (G0 / c0);
+  return std::isfinite(J) && J > 0.0 ? WalkStatus::ok : WalkStatus::singular;
+}
+
+int ManifoldShift::chain_end(const Path& base, int k, const ShiftResult& out) const {
+  const int n = base.size();
+  if (k < 1 || k + 2 >= n || out.reconnected >= 0 || out.path.size() != k + 1) return -1;
+  const Vertex& b = base[k];
+  const Vertex& ob = out.path[k];
+  if (b.kind != VertexKind::surface || ob.kind != VertexKind::surface || !b.connectable || !ob.connectable ||
+      b.delta_lobe() || !ob.hit.bsdf || b.hit.shape != ob.hit.shape)
+    return -1;
+  int m = k + 1;
+  for (; m < n && !base[m].connectable; ++m)
+    if (!specular_chain_vertex(base[m])) return -1;
+  if (m == k + 1 || m >= n || base[m].kind != VertexKind::surface) return -1;
+  return m;
+}
+
+std::optional<Chain> ManifoldShift::make_chain(const Path& base, int k, int m) const {
+  using manifold::Interaction;
+  Chain ch;
+  ch.pin = manifold::Pin::position;
+  auto add = [&](const Vertex& v, Interaction type, double eta) {
+    const auto cv = manifold::make_vertex(m_scene, v.hit, type, eta);
+    if (cv) ch.v.push_back(*cv);
+    return bool(cv);
+  };
+  if (!add(base[m], Interaction::reflection, 1.0)) return std::nullopt;  // pinned c
+  for (int j = m - 1; j > k; --j) {
+    const Vertex& v = base[j];
+    if (!is_refraction(v)) {
+      if (!add(v, Interaction::reflection, 1.0)) return std::nullopt;
+      continue;
+    }
+    // Chain eta = index behind the geometric normal / index in front (manifold/chain.h);
+    // Vertex::eta = eta_o / eta_i of the sampled lobe.
+    const bool wi_front = v.hit.ng.dot(v.hit.shading.to_world(v.wi)) > 0.0f;
+    if (!add(v, Interaction::refraction, wi_front ? double(v.eta) : 1.0 / double(v.eta))) return std::nullopt;
+  }
+  if (!add(base[k], Interaction::reflection, 1.0)) return std::nullopt;  // the end b
+  return ch;
+}
+
+ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const {
+  const int m = chain_end(base, k, out);
+  if (m < 0) return ReconnectionShift::step(base, k, out);
+  return walk_chain(base, k, m, out);
+}
+
+ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResult& out) const {
+  Path& o = out.path;
+  for (int j = k; j < m; ++j) out.step[size_t(j)] = StepKind::manifold;
+  if (!wi_consistent(o[k])) return ShiftStatus::zero_contribution;
+  const auto chain = make_chain(base, k, m);
+  if (!chain) return ShiftStatus::not_invertible;
+  // The base chain re-traced in double from b along its sampled direction (the
+  // parameterization's coordinate): the float path satisfies the specular constraints
+  // only to ~1e-6, which near caustic folds perturbs G by up to ~1e-3 relative.
+  manifold::WalkStats ws;
+  manifold::Chain exact;
+  WalkStatus st = manifold::retrace(m_scene, reversed(*chain), d3(base[k + 1].p()), exact);
+  ++ws.traces;
+  exact = reversed(exact);  // pinned at the re-traced c, ending at b
+  manifold::WalkResult w;
+  if (st == WalkStatus::ok) {
+    w = manifold::walk(m_scene, exact, d3(o[k].p()), m_walk, &ws);
+    st = w.status;
+  } else {
+    ws.record(st, 0);
+  }
+  out.walk_status = int(st);
+  out.walk_iterations = w.iterations;
+  out.walk_traces = ws.traces;
+  if (st != WalkStatus::ok) return shift_status(st);
+  double J = 0;
+  if (manifold_shift_jacobian(exact, w.chain, J) != WalkStatus::ok) return ShiftStatus::not_invertible;
+
+  // Offset vertices along the walked chain, re-traced in float from b' (rays leave from
+  // the vertex itself, pathspace/scatter.h) so they carry full SurfaceHits.
+  const double tol = 1e-4 * std::max(1.0, double(m_scene.scene_radius()));
+  const auto scatter_to = [&](int j, const Vec3& dir) -> ShiftStatus {
+    Vertex& ov = o[j];
+    const Vertex& b = base[j];
+    if (!ov.hit.bsdf) return ShiftStatus::zero_contribution;
+    const auto ctx = pathspace::radiance_context(ov.hit);
+    const Vec3 wo_l = ov.hit.shading.to_local(dir);
+    if (!pathspace::consistent_side(ov.hit, dir, wo_l.z())) return ShiftStatus::zero_contribution;
+    if (j == k) {
+      const double pdf = double(ov.hit.bsdf->pdf(ctx, ov.wi, wo_l));
+      if (!(pdf > 0.0)) return ShiftStatus::zero_contribution;
+      set_scatter(ov, b, wo_l, dir, ov.hit.bsdf->eval(ctx, ov.wi, wo_l) * abs_cos_theta(wo_l), pdf);
+      return ShiftStatus::ok;
+    }
+    // The same Dirac lobe (its value and probability depend on wi only); its direction
+    // must be the walked one up to float round-off.
+    if (!wi_consistent(ov)) return ShiftStatus::zero_contribution;
+    const auto bs = pathspace::sample_dirac_lobe(*ov.hit.bsdf, ctx, ov.wi, b.lobe, b.u_lobe);
+    if (!bs || !(bs->pdf > 0.0f) || (bs->wo - wo_l).norm() > 1e-3f) return ShiftStatus::zero_contribution;
+    set_scatter(ov, b, wo_l, dir, bs->weight * bs->pdf, double(bs->pdf));
+    ov.eta = bs->eta;
+    return ShiftStatus::ok;
+  };
+  for (int j = k + 1; j <= m; ++j) {
+    const Vec3d target = j < m ? w.chain.v[size_t(m - j)].p() : d3(base[m].p());
+    const Vec3 dir = (target.cast<float>() - o[j - 1].p()).normalized();
+    const ShiftStatus ss = scatter_to(j - 1, dir);
+    if (ss != ShiftStatus::ok) return ss;
+    const auto hit = pathspace::trace_from(m_scene, o[j - 1].hit, dir);
+    if (!hit || hit->shape != base[j].hit.shape || !((d3(hit->p) - target).norm() <= tol))
+      return ShiftStatus::occluded;
+    Vertex nv;
+    if (j == m) {
+      nv = base[m];  // the offset rejoins the base at c
+    } else {
+      nv.kind = VertexKind::surface;
+      nv.hit = *hit;
+      nv.connectable = pathspace::is_connectable(hit->bsdf, m_opt.threshold);
+    }
+    nv.wi = nv.hit.shading.to_local(-dir);
+    nv.emission = pathspace::emitted(m_scene, nv, -dir);
+    o.append(nv);
+  }
+  out.jacobian[size_t(k)] = J;
+  out.reconnected = m;
+  return ShiftStatus::ok;
+}
+
+}  // namespace dp::gradients

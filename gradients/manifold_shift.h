@@ -1,0 +1,77 @@
+// The manifold shift: the G-PT hybrid shift (reconnection_shift.h) extended by a
+// manifold walk through specular chains (Jakob & Marschner 2012; used as the shift of
+// G-BDPT, Manzi et al. 2015, Sec. 4; ALGORITHMS.md "G-BDPT" and "Manifold walks").
+//
+// Where the hybrid shift would copy the half vector at a connectable vertex b = x_k
+// whose next vertex is specular (a caustic chain: the offset then drifts through the
+// chain and rarely reaches the same light), this shift keeps the end of the chain:
+//   x_k = b (connectable), x_{k+1} .. x_{m-1} specular, x_m = c (connectable surface),
+// the offset's b' = x'_k already made by the prefix rules; the chain pinned at c with its
+// end moved from b to b' is walked (manifold::walk, ideal specular constraints), giving
+// x'_{k+1} .. x'_{m-1}, and the offset rejoins the base at c (afterwards it shares every
+// base vertex, as after a reconnection).
+//
+// Jacobian (parameterization of jacobians.h: the solid angle of the direction sampled at
+// b; delta lobes sample no direction). The chain maps the sampled direction at b to the
+// area at c: d w_b = G(b <-> c) / |cos theta_b| dA_c, G the generalized geometry term
+// (J&M 2012, Sec. 4.3; projected solid angle at b per unit area at c, symmetric). The
+// offset reaches the same c, so
+//   |d w'_b' / d w_b| = [G(b' <-> c) / |cos theta'_b'|] / [G(b <-> c) / |cos theta_b|],
+// cosines w.r.t. the geometric normals at b and b' (Manzi et al. 2015, Sec. 4, the ratio
+// of generalized geometry terms; for ideal specular chains no half-vector determinant
+// enters because the chain samples no direction of its own).
+//
+// When the walk is used (the strategy must be the one the reverse shift picks, so every
+// condition is symmetric between base and offset): k >= 1, not yet reconnected; b and b'
+// connectable, on the same shape, the base sampled a non-delta lobe at b; every chain
+// vertex has a purely specular BSDF (only Dirac lobes: no NEE and no BSDF-sampled
+// direction of its own), emits nothing, and is not an index-matched refraction; the
+// chain ends at a connectable surface vertex c inside the walk. Then no concrete path of
+// the walk ends strictly inside the chain with a nonzero contribution, so shifting the
+// whole chain at once is a well-defined map of every contributing path. Otherwise the
+// step is exactly ReconnectionShift's (glossy vertices in a chain, chains escaping to the
+// environment or cut off by the walk's length keep the half-vector copy).
+//
+// Failures: the walk's failure (manifold::WalkStatus, counted by cause in the result)
+// maps to `occluded` for miss / different_object, else `not_invertible` (no offset chain
+// found); a float re-trace of the walked chain from b' that hits another surface is
+// `occluded`; a Dirac lobe the offset cannot produce is `zero_contribution`.
+#pragma once
+
+#include "gradients/reconnection_shift.h"
+#include "manifold/walk.h"
+
+namespace dp::gradients {
+
+struct ManifoldShiftOptions {
+  ReconnectionShiftOptions reconnection;
+  manifold::WalkSettings walk;  // 20 iterations, 1e-7 (check_reversible: --paranoid / tests)
+};
+
+class ManifoldShift final : public ReconnectionShift {
+ public:
+  ManifoldShift(const scene::Scene& scene, const ManifoldShiftOptions& options)
+      : ReconnectionShift(scene, options.reconnection), m_walk(options.walk) {}
+  std::string name() const override { return "manifold"; }
+  const manifold::WalkSettings& walk_settings() const { return m_walk; }
+
+  // Index m of the chain's end c if the walk strategy applies at base vertex k (offset
+  // prefix x'_0..x'_k in out.path), else -1.
+  int chain_end(const pathspace::Path& base, int k, const ShiftResult& out) const;
+  // The chain x_m (pinned), x_{m-1} .. x_{k+1}, x_k (end) of a base path, in double;
+  // nullopt if a vertex has no valid local frame.
+  std::optional<manifold::Chain> make_chain(const pathspace::Path& base, int k, int m) const;
+
+ protected:
+  ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const override;
+
+ private:
+  ShiftStatus walk_chain(const pathspace::Path& base, int k, int m, ShiftResult& out) const;
+  manifold::WalkSettings m_walk;
+};
+
+// |d w'_b' / d w_b| of two chains pinned at the same c (see header): `base` ends at b,
+// `offset` at b'. ok, or the status of a degenerate chain (then J is not set).
+manifold::WalkStatus manifold_shift_jacobian(const manifold::Chain& base, const manifold::Chain& offset, double& J);
+
+}  // namespace dp::gradients
