@@ -42,8 +42,9 @@ class TriangleMesh final : public Shape {
   bool smooth = true;         // interpolate vertex normals when present
   size_t degenerate_skipped = 0;
 
-  // Removes zero-area / non-finite triangles (counted in degenerate_skipped) and builds
-  // the area CDF. Call once after filling the arrays.
+  // Removes zero-area / non-finite triangles (counted in degenerate_skipped), builds
+  // the area CDF and the per-triangle frames. Call once after filling the arrays (and
+  // again after changing them).
   void finalize();
   ShapeKind kind() const override { return ShapeKind::mesh; }
   float area() const override { return m_area; }
@@ -53,7 +54,18 @@ class TriangleMesh final : public Shape {
   float triangle_area(size_t i) const;
 
  private:
+  // Per-triangle constants (a hit only interpolates): the unit geometric normal, dp/du
+  // and dp/dv from the uv parameterization (or an orthonormal tangent pair when the uvs
+  // are degenerate), and the flat-shading frame. Costs 52 bytes per triangle and saves
+  // the divisions and square roots of every hit.
+  struct TriangleFrame {
+    Vec3 ng, dpdu, dpdv;
+    Frame flat;
+    bool uv_ok = false;
+  };
+  TriangleFrame compute_frame(size_t i) const;
   std::vector<float> m_cdf;  // cumulative triangle areas, normalized
+  std::vector<TriangleFrame> m_frames;
   float m_area = 0;
 };
 

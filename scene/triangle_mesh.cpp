@@ -84,6 +84,35 @@ void TriangleMesh::finalize() {
   }
   if (!m_cdf.empty()) m_cdf.back() = 1.0f;
   m_area = float(total);
+  m_frames.resize(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) m_frames[i] = compute_frame(i);
+}
+
+TriangleMesh::TriangleFrame TriangleMesh::compute_frame(size_t i) const {
+  const auto& tri = triangles[i];
+  const Vec3& v0 = positions[tri[0]];
+  const Vec3 e1 = positions[tri[1]] - v0, e2 = positions[tri[2]] - v0;
+  TriangleFrame f;
+  f.ng = e1.cross(e2).normalized();
+  // uv parameterization and dp/du, dp/dv (pbrt-v3 Sec. 3.6.2: solve the 2x2 system
+  // [du1 dv1; du2 dv2] [dpdu; dpdv] = [e1; e2]).
+  Vec2 uv0(0, 0), uv1(1, 0), uv2(0, 1);
+  if (!uvs.empty()) {
+    uv0 = uvs[tri[0]];
+    uv1 = uvs[tri[1]];
+    uv2 = uvs[tri[2]];
+  }
+  const Vec2 duv1 = uv1 - uv0, duv2 = uv2 - uv0;
+  f.uv_ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), e1, e2, f.dpdu, f.dpdv);
+  if (f.uv_ok && !(f.dpdu.cross(f.dpdv).squaredNorm() > 0.0f)) f.uv_ok = false;
+  if (!f.uv_ok) {
+    // Degenerate uvs: an arbitrary orthonormal tangent frame around ng.
+    const Frame t = Frame::from_normal(f.ng);
+    f.dpdu = t.s;
+    f.dpdv = t.t;
+  }
+  f.flat = Frame::from_normal_tangent(f.ng, f.dpdu);
+  return f;
 }
 
 Bounds3 TriangleMesh::bounds() const {
@@ -129,15 +158,12 @@ void TriangleMesh::fill_surface(int prim, const Vec2& b, const Ray& ray, float t
   const Vec3& v1 = positions[tri[1]];
   const Vec3& v2 = positions[tri[2]];
   const float b1 = b.x(), b2 = b.y(), b0 = 1.0f - b1 - b2;
-  const Vec3 e1 = v1 - v0, e2 = v2 - v0;
+  const TriangleFrame& tf = m_frames[size_t(prim)];
 
   // Position from barycentrics (on the plane, unlike o + t d which carries the ray's
   // rounding error along d).
   out.p = b0 * v0 + b1 * v1 + b2 * v2;
-  out.ng = e1.cross(e2).normalized();
-
-  // uv parameterization and dp/du, dp/dv (pbrt-v3 Sec. 3.6.2: solve the 2x2 system
-  // [du1 dv1; du2 dv2] [dpdu; dpdv] = [e1; e2]).
+  out.ng = tf.ng;
   Vec2 uv0(0, 0), uv1(1, 0), uv2(0, 1);
   if (!uvs.empty()) {
     uv0 = uvs[tri[0]];
@@ -145,57 +171,55 @@ void TriangleMesh::fill_surface(int prim, const Vec2& b, const Ray& ray, float t
     uv2 = uvs[tri[2]];
   }
   out.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+  out.dpdu = tf.dpdu;
+  out.dpdv = tf.dpdv;
+  const bool uv_ok = tf.uv_ok;
   const Vec2 duv1 = uv1 - uv0, duv2 = uv2 - uv0;
-  bool uv_ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), e1, e2, out.dpdu, out.dpdv);
-  if (uv_ok && !(out.dpdu.cross(out.dpdv).squaredNorm() > 0.0f)) uv_ok = false;
-  if (!uv_ok) {
-    // Degenerate uvs: an arbitrary orthonormal tangent frame around ng.
-    const Frame f = Frame::from_normal(out.ng);
-    out.dpdu = f.s;
-    out.dpdv = f.t;
-  }
+  const Vec3 e1 = v1 - v0, e2 = v2 - v0;
 
   const bool shade_smooth = smooth && !normals.empty();
-  Vec3 ns = out.ng;
   out.dndu = Vec3::Zero();
   out.dndv = Vec3::Zero();
-  if (shade_smooth) {
-    const Vec3& n0 = normals[tri[0]];
-    const Vec3& n1 = normals[tri[1]];
-    const Vec3& n2 = normals[tri[2]];
-    const Vec3 n_raw = b0 * n0 + b1 * n1 + b2 * n2;
-    const float len = n_raw.norm();
-    if (len > 0.0f && std::isfinite(len)) {
-      ns = n_raw / len;
-      // Derivatives of the raw interpolated normal w.r.t. the barycentrics are
-      // (n1 - n0, n2 - n0). Map them to (u, v): with uvs, by the same 2x2 system as
-      // dp/du; otherwise along the arbitrary tangents: find the barycentric
-      // displacement (db1, db2) with e1 db1 + e2 db2 = dpdu via the Gram system.
-      const Vec3 dn1 = n1 - n0, dn2 = n2 - n0;
-      Vec3 dndu_raw, dndv_raw;
-      bool ok;
-      if (uv_ok) {
-        ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), dn1, dn2, dndu_raw, dndv_raw);
-      } else {
-        const float g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
-        const double det = double(g11) * double(g22) - double(g12) * double(g12);
-        ok = std::abs(det) > 0.0;
-        if (ok) {
-          auto along = [&](const Vec3& tangent) {
-            const double r1 = double(e1.dot(tangent)), r2 = double(e2.dot(tangent));
-            const double db1 = (double(g22) * r1 - double(g12) * r2) / det;
-            const double db2 = (double(g11) * r2 - double(g12) * r1) / det;
-            return Vec3(dn1 * float(db1) + dn2 * float(db2));
-          };
-          dndu_raw = along(out.dpdu);
-          dndv_raw = along(out.dpdv);
-        }
-      }
+  if (!shade_smooth) {
+    out.shading = tf.flat;
+    return;
+  }
+  Vec3 ns = out.ng;
+  const Vec3& n0 = normals[tri[0]];
+  const Vec3& n1 = normals[tri[1]];
+  const Vec3& n2 = normals[tri[2]];
+  const Vec3 n_raw = b0 * n0 + b1 * n1 + b2 * n2;
+  const float len = n_raw.norm();
+  if (len > 0.0f && std::isfinite(len)) {
+    ns = n_raw / len;
+    // Derivatives of the raw interpolated normal w.r.t. the barycentrics are
+    // (n1 - n0, n2 - n0). Map them to (u, v): with uvs, by the same 2x2 system as
+    // dp/du; otherwise along the arbitrary tangents: find the barycentric
+    // displacement (db1, db2) with e1 db1 + e2 db2 = dpdu via the Gram system.
+    const Vec3 dn1 = n1 - n0, dn2 = n2 - n0;
+    Vec3 dndu_raw, dndv_raw;
+    bool ok;
+    if (uv_ok) {
+      ok = solve2(duv1.x(), duv1.y(), duv2.x(), duv2.y(), dn1, dn2, dndu_raw, dndv_raw);
+    } else {
+      const float g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
+      const double det = double(g11) * double(g22) - double(g12) * double(g12);
+      ok = std::abs(det) > 0.0;
       if (ok) {
-        // d(n/|n|) = (dn - n_hat (n_hat . dn)) / |n|
-        out.dndu = (dndu_raw - ns * ns.dot(dndu_raw)) / len;
-        out.dndv = (dndv_raw - ns * ns.dot(dndv_raw)) / len;
+        auto along = [&](const Vec3& tangent) {
+          const double r1 = double(e1.dot(tangent)), r2 = double(e2.dot(tangent));
+          const double db1 = (double(g22) * r1 - double(g12) * r2) / det;
+          const double db2 = (double(g11) * r2 - double(g12) * r1) / det;
+          return Vec3(dn1 * float(db1) + dn2 * float(db2));
+        };
+        dndu_raw = along(out.dpdu);
+        dndv_raw = along(out.dpdv);
       }
+    }
+    if (ok) {
+      // d(n/|n|) = (dn - n_hat (n_hat . dn)) / |n|
+      out.dndu = (dndu_raw - ns * ns.dot(dndu_raw)) / len;
+      out.dndv = (dndv_raw - ns * ns.dot(dndv_raw)) / len;
     }
   }
   out.shading = Frame::from_normal_tangent(ns, out.dpdu);

@@ -109,12 +109,14 @@ TEST_CASE("mesh fill_surface: position, normal, default uvs, tangents", "[unit]"
   CHECK(sp.dndv.norm() == 0.0f);
   // Explicit uvs: e_k = dpdu du_k + dpdv dv_k.
   m->uvs = {Vec2(0.1f, 0.2f), Vec2(0.7f, 0.1f), Vec2(0.3f, 0.9f)};
+  m->finalize();  // per-triangle frames are built by finalize()
   const SurfacePoint su = mesh_point(*m, 0, b);
   CHECK((su.uv - Vec2(0.35f, 0.525f)).norm() < 1e-6f);
   CHECK((su.dpdu * 0.6f + su.dpdv * -0.1f - Vec3(2, 0, 0)).norm() < 1e-4f);
   CHECK((su.dpdu * 0.2f + su.dpdv * 0.7f - Vec3(0, 3, 1)).norm() < 1e-4f);
   // Degenerate uvs: an orthonormal tangent frame, still usable.
   m->uvs = {Vec2(0.5f, 0.5f), Vec2(0.5f, 0.5f), Vec2(0.5f, 0.5f)};
+  m->finalize();
   const SurfacePoint sd = mesh_point(*m, 0, b);
   CHECK(std::abs(sd.dpdu.norm() - 1.0f) < 1e-5f);
   CHECK(std::abs(sd.dpdu.dot(sd.ng)) < 1e-5f);
@@ -125,7 +127,10 @@ TEST_CASE("mesh fill_surface: interpolated normals and their derivatives", "[uni
   auto m = test::make_mesh({Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 3, 1)}, {{0, 1, 2}});
   m->normals = {Vec3(0.1f, -0.3f, 1).normalized(), Vec3(0.5f, 0.2f, 1).normalized(), Vec3(-0.3f, 0.1f, 1).normalized()};
   for (const bool with_uvs : {false, true}) {
-    if (with_uvs) m->uvs = {Vec2(0.1f, 0.2f), Vec2(0.7f, 0.1f), Vec2(0.3f, 0.9f)};
+    if (with_uvs) {
+      m->uvs = {Vec2(0.1f, 0.2f), Vec2(0.7f, 0.1f), Vec2(0.3f, 0.9f)};
+      m->finalize();
+    }
     const Vec2 b(0.3f, 0.2f);
     const SurfacePoint sp = mesh_point(*m, 0, b);
     const Vec3 expected = (0.5f * m->normals[0] + 0.3f * m->normals[1] + 0.2f * m->normals[2]).normalized();
