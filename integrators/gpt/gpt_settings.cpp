@@ -20,6 +20,11 @@ GptSettings GptSettings::read(Settings& s) {
   g.alpha = float(s.get_double("alpha", double(g.alpha), "screened Poisson weight of the primal image (L1 and L2)"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
                                   "reconstruction shown as the RGB layer (both are written as layers)", {"l1", "l2"});
+  g.shift = s.get_string("shift", g.shift,
+                         "shift mapping: reconnection (the G-PT hybrid shift, Kettunen 2015) or manifold "
+                         "(the hybrid shift plus manifold walks through specular chains ending at a "
+                         "connectable vertex, so caustic offsets rejoin the base; Jakob & Marschner 2012)",
+                         {"reconnection", "manifold"});
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (!(g.shift_threshold >= 0.0f)) throw ValueError("setting 'shift_threshold' must be >= 0", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");

@@ -15,6 +15,7 @@ struct GptSettings {
   float shift_threshold = 0.001f; // roughness <= threshold: glossy/specular (half-vector copy)
   float alpha = 0.2f;             // screened Poisson weight of the primal
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
+  std::string shift = "reconnection";  // reconnection (Kettunen 2015) | manifold (gradients/manifold_shift.h)
 
   static GptSettings read(Settings& s);
 };

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "gradients/manifold_shift.h"
 #include "gradients/mis.h"
 #include "pathspace/measure.h"
 #include "pathspace/scatter.h"
@@ -29,14 +30,23 @@ void GptCounters::flush(core::Stats& stats) const {
     stats.add("gpt.step." + kind + ".attempted", attempted[size_t(i)]);
     stats.add("gpt.step." + kind + ".succeeded", succeeded[size_t(i)]);
   }
+  if (walks.attempted > 0) walks.flush(stats, "gpt.manifold");
 }
+
+namespace {
+std::unique_ptr<gradients::Shift> make_shift(const scene::Scene& scene, const GptSettings& settings) {
+  const gradients::ReconnectionShiftOptions ro{settings.shift_threshold,
+                                               scene.caps().has_glossy || scene.caps().has_specular};
+  if (settings.shift == "manifold") return std::make_unique<gradients::ManifoldShift>(scene, gradients::ManifoldShiftOptions{ro, {}});
+  return std::make_unique<gradients::ReconnectionShift>(scene, ro);
+}
+}  // namespace
 
 GptTracer::GptTracer(const scene::Scene& scene, const GptSettings& settings, int max_depth)
     : m_scene(scene),
       m_settings(settings),
       m_builder(scene, pathspace::WalkOptions{max_depth, settings.rr_depth, settings.nee, settings.shift_threshold}),
-      m_shift(scene, gradients::ReconnectionShiftOptions{
-                         settings.shift_threshold, scene.caps().has_glossy || scene.caps().has_specular}) {}
+      m_shift(make_shift(scene, settings)) {}
 
 void GptTracer::count(const ShiftResult& r, int n, GptCounters& c) const {
   ++c.shifts;
@@ -45,6 +55,10 @@ void GptTracer::count(const ShiftResult& r, int n, GptCounters& c) const {
   for (int k = 0; k + 1 < n && k + 1 <= r.alive; ++k) {
     ++c.attempted[size_t(r.step[size_t(k)])];
     if (r.alive >= k + 2) ++c.succeeded[size_t(r.step[size_t(k)])];
+  }
+  if (r.walk_status >= 0) {
+    c.walks.record(manifold::WalkStatus(r.walk_status), r.walk_iterations);
+    c.walks.traces += r.walk_traces;
   }
   for (int k = 1; k < r.alive; ++k) {
     if (r.nee_step[size_t(k)] == gradients::StepKind::none && r.nee_status[size_t(k)] == ShiftStatus::ok) continue;
@@ -87,7 +101,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
     const bool inside = qx >= 0 && qy >= 0 && qx < w && qy < h;
     int alive = 0;
     if (inside) {
-      m_shift.shift(base, Vec2(float(kDx[nb]), float(kDy[nb])), res);
+      m_shift->shift(base, Vec2(float(kDx[nb]), float(kDy[nb])), res);
       count(res, n, counters);
       alive = res.alive;
       // Offset throughput relative to the base density, and pdf ratios p_j(T x)|T'| / p_i(x)

@@ -1,6 +1,7 @@
 // Per-sample physics of gradient-domain path tracing (Kettunen et al. 2015): one base
 // walk (pathspace::PathBuilder, sampled exactly like the reference PT) in pixel i, its
-// four shifted offsets (gradients::ReconnectionShift) into the neighbours, and the
+// four shifted offsets (gradients::ReconnectionShift, or gradients::ManifoldShift with
+// `shift=manifold`) into the neighbours, and the
 // symmetric MIS-weighted splats (gradients/mis.h) of every concrete path into the
 // primal, dx, dy and direct buffers:
 //   primal_i += 1/4 w f(x)/p(x), primal_j += 1/4 w f(T x)|T'|/p(x) per neighbour pair
@@ -11,10 +12,12 @@
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include "core/stats.h"
 #include "gradients/gradient_buffers.h"
 #include "gradients/reconnection_shift.h"
+#include "manifold/walk_stats.h"
 #include "integrators/gpt/gpt_settings.h"
 #include "pathspace/path_builder.h"
 
@@ -27,6 +30,7 @@ struct GptCounters {
   std::array<int64_t, gradients::kShiftStatusCount> fail{};      // walk failures by cause
   std::array<int64_t, gradients::kStepKindCount> attempted{}, succeeded{};  // per strategy
   std::array<int64_t, gradients::kShiftStatusCount> nee_fail{};
+  manifold::WalkStats walks;  // manifold shift: walks by outcome ("gpt.manifold.*")
   void flush(core::Stats& stats) const;
 };
 
@@ -36,7 +40,7 @@ class GptTracer {
   // One base sample in pixel (px, py) with its four offsets.
   void sample(int px, int py, pathspace::SampleStream& stream, gradients::GradientBuffers& buf,
               GptCounters& counters) const;
-  const gradients::ReconnectionShift& shift() const { return m_shift; }
+  const gradients::Shift& shift() const { return *m_shift; }
   const pathspace::PathBuilder& builder() const { return m_builder; }
 
  private:
@@ -44,7 +48,7 @@ class GptTracer {
   const scene::Scene& m_scene;
   GptSettings m_settings;
   pathspace::PathBuilder m_builder;
-  gradients::ReconnectionShift m_shift;
+  std::unique_ptr<gradients::Shift> m_shift;
 };
 
 }  // namespace dp::integrators
