@@ -172,7 +172,11 @@ std::optional<TraceHit> trace(const scene::Scene& scene, const Vec3d& origin, co
   Vec3d o = origin;
   if (ng_origin.squaredNorm() > 0) {
     const double side = dir.dot(ng_origin) >= 0 ? 1.0 : -1.0;
-    const double eps = double(scene.ray_epsilon()) * (1.0 + origin.cwiseAbs().maxCoeff());
+    // Scene::ray_epsilon() already scales with the scene's extent; scaling it again by
+    // |origin| moved the float ray by ~1 unit in a 556-unit Cornell box (1e-5 * 556 *
+    // (1 + 200)), so Embree hit other points than the exact ray and the refinement
+    // below fell back to them (chains re-traced off their vertices by up to 10 units).
+    const double eps = double(scene.ray_epsilon());
     o = origin + side * eps * ng_origin;
     ray.o = o.cast<float>();
   }
