@@ -111,27 +111,32 @@ ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const
   return walk_chain(base, k, m, out);
 }
 
+WalkStatus ManifoldShift::solve(const Path& path, int k, int m, const Vec3d& target, manifold::Chain& exact,
+                                manifold::WalkResult& w, manifold::WalkStats& ws) const {
+  const auto chain = make_chain(path, k, m);
+  if (!chain) return WalkStatus::invalid_input;
+  // The chain re-traced in double from x_k along its sampled direction (the
+  // parameterization's coordinate): the float path satisfies the specular constraints
+  // only to ~1e-6, which near caustic folds perturbs G by up to ~1e-3 relative.
+  const WalkStatus st = manifold::retrace(m_scene, reversed(*chain), d3(path[k + 1].p()), exact);
+  ++ws.traces;
+  if (st != WalkStatus::ok) {
+    ws.record(st, 0);
+    return st;
+  }
+  exact = reversed(exact);  // pinned at the re-traced c, ending at x_k
+  w = manifold::walk(m_scene, exact, target, m_walk, &ws);
+  return w.status;
+}
+
 ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResult& out) const {
   Path& o = out.path;
   for (int j = k; j < m; ++j) out.step[size_t(j)] = StepKind::manifold;
   if (!wi_consistent(o[k])) return ShiftStatus::zero_contribution;
-  const auto chain = make_chain(base, k, m);
-  if (!chain) return ShiftStatus::not_invertible;
-  // The base chain re-traced in double from b along its sampled direction (the
-  // parameterization's coordinate): the float path satisfies the specular constraints
-  // only to ~1e-6, which near caustic folds perturbs G by up to ~1e-3 relative.
   manifold::WalkStats ws;
   manifold::Chain exact;
-  WalkStatus st = manifold::retrace(m_scene, reversed(*chain), d3(base[k + 1].p()), exact);
-  ++ws.traces;
-  exact = reversed(exact);  // pinned at the re-traced c, ending at b
   manifold::WalkResult w;
-  if (st == WalkStatus::ok) {
-    w = manifold::walk(m_scene, exact, d3(o[k].p()), m_walk, &ws);
-    st = w.status;
-  } else {
-    ws.record(st, 0);
-  }
+  WalkStatus st = solve(base, k, m, d3(o[k].p()), exact, w, ws);
   out.walk_status = int(st);
   out.walk_iterations = w.iterations;
   out.walk_traces = ws.traces;
@@ -183,6 +188,23 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
     nv.wi = nv.hit.shading.to_local(-dir);
     nv.emission = pathspace::emitted(m_scene, nv, -dir);
     o.append(nv);
+  }
+  // Invertibility (the reverse shift must succeed with the same strategy): the reverse
+  // shift walks the offset's own float chain back to b; Newton's basin is not symmetric
+  // (near caustic folds the walk back fails for ~10% of converged forward walks in the
+  // Cornell box), so the forward shift runs that very walk and fails with it. Then
+  // T(x) exists iff T^-1(T(x)) does, as the symmetric MIS weights require.
+  manifold::Chain back_exact;
+  manifold::WalkResult back;
+  st = solve(o, k, m, d3(base[k].p()), back_exact, back, ws);
+  out.walk_traces = ws.traces;
+  // ... and must find the base's own chain, not another solution with the same ends.
+  const double back_tol = m_walk.reverse_tolerance * std::max(1e-3, double(m_scene.scene_radius()));
+  for (int i = 1; st == WalkStatus::ok && i < exact.n(); ++i)
+    if (!((back.chain.v[size_t(i)].p() - exact.v[size_t(i)].p()).norm() <= back_tol)) st = WalkStatus::not_reversible;
+  if (st != WalkStatus::ok) {
+    out.walk_status = int(WalkStatus::not_reversible);
+    return ShiftStatus::not_invertible;
   }
   out.jacobian[size_t(k)] = J;
   out.reconnected = m;

@@ -35,7 +35,11 @@
 // Failures: the walk's failure (manifold::WalkStatus, counted by cause in the result)
 // maps to `occluded` for miss / different_object, else `not_invertible` (no offset chain
 // found); a float re-trace of the walked chain from b' that hits another surface is
-// `occluded`; a Dirac lobe the offset cannot produce is `zero_contribution`.
+// `occluded`; a Dirac lobe the offset cannot produce is `zero_contribution`. The reverse
+// walk (the offset's own chain walked back to b, exactly as the reverse shift does it)
+// must converge too, else `not_invertible` (walk status not_reversible): Newton's basin
+// is not symmetric near caustic folds, and a shift that exists in one direction only
+// would bias the symmetric MIS.
 #pragma once
 
 #include "gradients/reconnection_shift.h"
@@ -67,6 +71,10 @@ class ManifoldShift final : public ReconnectionShift {
 
  private:
   ShiftStatus walk_chain(const pathspace::Path& base, int k, int m, ShiftResult& out) const;
+  // Re-traces the chain x_k .. x_m of `path` in double from x_k and walks its end to
+  // `target` (c pinned): `exact` is the re-traced chain, `w` the walk.
+  manifold::WalkStatus solve(const pathspace::Path& path, int k, int m, const Vec3d& target, manifold::Chain& exact,
+                             manifold::WalkResult& w, manifold::WalkStats& ws) const;
   manifold::WalkSettings m_walk;
 };
 
