@@ -77,6 +77,7 @@ int ManifoldShift::chain_end(const Path& base, int k, const ShiftResult& out) co
   for (; m < n && !base[m].connectable; ++m)
     if (!specular_chain_vertex(base[m])) return -1;
   if (m == k + 1 || m >= n || base[m].kind != VertexKind::surface) return -1;
+  if (m_emitter_chains_only && !base[m].hit.emitter) return -1;
   return m;
 }
 

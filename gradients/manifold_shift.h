@@ -26,7 +26,8 @@
 // connectable, on the same shape, the base sampled a non-delta lobe at b; every chain
 // vertex has a purely specular BSDF (only Dirac lobes: no NEE and no BSDF-sampled
 // direction of its own), emits nothing, and is not an index-matched refraction; the
-// chain ends at a connectable surface vertex c inside the walk. Then no concrete path of
+// chain ends at a connectable surface vertex c inside the walk (by default only if c is
+// an emitter: ManifoldShiftOptions::emitter_chains_only). Then no concrete path of
 // the walk ends strictly inside the chain with a nonzero contribution, so shifting the
 // whole chain at once is a well-defined map of every contributing path. Otherwise the
 // step is exactly ReconnectionShift's (glossy vertices in a chain, chains escaping to the
@@ -50,12 +51,21 @@ namespace dp::gradients {
 struct ManifoldShiftOptions {
   ReconnectionShiftOptions reconnection;
   manifold::WalkSettings walk;  // 20 iterations, 1e-7 (check_reversible: --paranoid / tests)
+  // Walk only chains whose end c is an emitter (the caustic paths L S+ D.. where the
+  // half-vector copy drifts off the light). Chains ending on other connectable surfaces
+  // keep the half-vector copy: there it is as good (the offset rejoins the base one
+  // vertex later) and a walk costs ~14 chain re-traces (forward + reverse), measured on
+  // cornell_specular.yaml (bench_gpt --diagnose, bench/RESULTS.md). A per-shape
+  // property, so the choice stays symmetric.
+  bool emitter_chains_only = true;
 };
 
 class ManifoldShift final : public ReconnectionShift {
  public:
   ManifoldShift(const scene::Scene& scene, const ManifoldShiftOptions& options)
-      : ReconnectionShift(scene, options.reconnection), m_walk(options.walk) {}
+      : ReconnectionShift(scene, options.reconnection),
+        m_walk(options.walk),
+        m_emitter_chains_only(options.emitter_chains_only) {}
   std::string name() const override { return "manifold"; }
   const manifold::WalkSettings& walk_settings() const { return m_walk; }
 
@@ -76,6 +86,7 @@ class ManifoldShift final : public ReconnectionShift {
   manifold::WalkStatus solve(const pathspace::Path& path, int k, int m, const Vec3d& target, manifold::Chain& exact,
                              manifold::WalkResult& w, manifold::WalkStats& ws) const;
   manifold::WalkSettings m_walk;
+  bool m_emitter_chains_only;
 };
 
 // |d w'_b' / d w_b| of two chains pinned at the same c (see header): `base` ends at b,

@@ -25,6 +25,10 @@ GptSettings GptSettings::read(Settings& s) {
                          "(the hybrid shift plus manifold walks through specular chains ending at a "
                          "connectable vertex, so caustic offsets rejoin the base; Jakob & Marschner 2012)",
                          {"reconnection", "manifold"});
+  g.manifold_chains = s.get_string("manifold_chains", g.manifold_chains,
+                                   "shift=manifold: which specular chains are walked -- emitter (chains ending on an "
+                                   "emitter: caustics) or all (every chain ending on a connectable vertex)",
+                                   {"emitter", "all"});
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (!(g.shift_threshold >= 0.0f)) throw ValueError("setting 'shift_threshold' must be >= 0", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");

@@ -16,6 +16,7 @@ struct GptSettings {
   float alpha = 0.2f;             // screened Poisson weight of the primal
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
   std::string shift = "reconnection";  // reconnection (Kettunen 2015) | manifold (gradients/manifold_shift.h)
+  std::string manifold_chains = "emitter";  // shift=manifold: walk chains ending on an emitter | all
 
   static GptSettings read(Settings& s);
 };

@@ -37,7 +37,9 @@ namespace {
 std::unique_ptr<gradients::Shift> make_shift(const scene::Scene& scene, const GptSettings& settings) {
   const gradients::ReconnectionShiftOptions ro{settings.shift_threshold,
                                                scene.caps().has_glossy || scene.caps().has_specular};
-  if (settings.shift == "manifold") return std::make_unique<gradients::ManifoldShift>(scene, gradients::ManifoldShiftOptions{ro, {}});
+  if (settings.shift == "manifold")
+    return std::make_unique<gradients::ManifoldShift>(
+        scene, gradients::ManifoldShiftOptions{ro, {}, settings.manifold_chains == "emitter"});
   return std::make_unique<gradients::ReconnectionShift>(scene, ro);
 }
 }  // namespace

@@ -89,6 +89,7 @@ TEST_CASE("manifold shift Jacobian vs finite differences of the shift map (mirro
   const auto s = test::lit_box(mirror(), glass(), 24);
   gradients::ManifoldShiftOptions opt;
   opt.reconnection.threshold = 0.001f;
+  opt.emitter_chains_only = false;  // every chain ending on a connectable vertex
   const gradients::ManifoldShift shift(*s, opt);
   manifold::WalkSettings tight;
   tight.tolerance = 1e-13;
@@ -176,6 +177,7 @@ TEST_CASE("manifold shift bijectivity T^-1(T(x)) = x through specular chains", "
     gradients::ManifoldShiftOptions opt;
     opt.reconnection.threshold = 0.001f;
     opt.walk.check_reversible = true;  // --paranoid
+    opt.emitter_chains_only = false;
     const gradients::ManifoldShift shift(*s, opt);
     int checked = 0, reverse_ok = 0, walk_fail = 0, newton_fail = 0, other_fail = 0;
     double worst_pos = 0, worst_jac = 0;
@@ -237,20 +239,26 @@ TEST_CASE("manifold shift bijectivity T^-1(T(x)) = x through specular chains", "
 TEST_CASE("manifold shift keeps the reconnection shift's steps where no walk applies", "[unit]") {
   // A glossy sphere below the threshold and a diffuse one: chains are glossy, not purely
   // specular, so every step must equal ReconnectionShift's bit for bit; in the mirror box
-  // the shifts differ exactly on paths with a walked chain.
+  // the shifts differ exactly on paths with a walked chain; with the default
+  // (emitter_chains_only) only chains ending on the light are walked.
   const auto glossy = scene::make_two_sided(
       scene::make_conductor(0.05f, 0.05f, scene::MicrofacetType::ggx, scene::ConductorFresnel{}));
   struct Case {
     const char* name;
     scene::BsdfPtr a;
     float threshold;
-    bool expect_walks;
+    bool expect_walks, emitter_only;
   };
-  const Case cases[] = {{"glossy", glossy, 0.1f, false}, {"mirror", mirror(), 0.001f, true}};
+  const Case cases[] = {{"glossy", glossy, 0.1f, false, false},
+                        {"mirror", mirror(), 0.001f, true, false},
+                        {"cornell, emitter chains", nullptr, 0.05f, true, true}};
   for (const auto& cs : cases) {
-    const auto s = test::lit_box(cs.a, nullptr, 16);
+    // The emitter-chain case needs caustics onto a light: the mirror+glass Cornell box.
+    const auto s = cs.emitter_only ? scene::load_scene(std::string(DP_SOURCE_DIR) + "/scenes/cornell_specular.yaml")
+                                   : test::lit_box(cs.a, nullptr, 16);
     gradients::ManifoldShiftOptions opt;
     opt.reconnection.threshold = cs.threshold;
+    opt.emitter_chains_only = cs.emitter_only;
     const gradients::ManifoldShift ms(*s, opt);
     const gradients::ReconnectionShift rs(*s, opt.reconnection);
     pathspace::WalkOptions wo;
@@ -260,14 +268,21 @@ TEST_CASE("manifold shift keeps the reconnection shift's steps where no walk app
     pathspace::IndependentStream stream(rng);
     pathspace::Path x;
     gradients::ShiftResult a, b;
-    int walked = 0, identical = 0, total = 0;
-    for (int i = 0; i < 3000; ++i) {
-      builder.build(i % 15, (i / 15) % 16, stream, x);
+    int walked = 0, identical = 0, total = 0, chain_ends_lit = 0;
+    const int res = s->camera().width(), samples = cs.emitter_only ? 40000 : 3000;
+    for (int i = 0; i < samples; ++i) {
+      builder.build(i % (res - 1), (i / (res - 1)) % res, stream, x);
       ms.shift(x, Vec2(1, 0), a);
       rs.shift(x, Vec2(1, 0), b);
       ++total;
       if (a.walk_status >= 0) {
         ++walked;
+        int m = -1;  // the walked chain's end: the first connectable vertex after the chain
+        for (int k = 1; k + 1 < x.size() && m < 0; ++k)
+          if (a.step[size_t(k)] == StepKind::manifold)
+            for (int j = k + 1; j < x.size() && m < 0; ++j)
+              if (x[j].connectable) m = j;
+        if (cs.emitter_only) chain_ends_lit += m > 0 && x[m].hit.emitter != nullptr;
         continue;
       }
       bool same = a.alive == b.alive && a.status == b.status;
@@ -276,12 +291,18 @@ TEST_CASE("manifold shift keeps the reconnection shift's steps where no walk app
                a.nee_jacobian[size_t(k)] == b.nee_jacobian[size_t(k)] && a.step[size_t(k)] == b.step[size_t(k)];
       identical += same;
     }
-    std::printf("manifold vs reconnection %-7s: %d paths, %d with a walk, %d of the others identical\n", cs.name,
+    std::printf("manifold vs reconnection %-22s: %d paths, %d with a walk, %d of the others identical\n", cs.name,
                 total, walked, identical);
     INFO(cs.name);
     REQUIRE(identical == total - walked);
-    if (cs.expect_walks) REQUIRE(walked > 100);
-    else REQUIRE(walked == 0);
+    if (cs.emitter_only) {
+      REQUIRE(walked > 10);
+      REQUIRE(chain_ends_lit == walked);  // only chains ending on the light are walked
+    } else if (cs.expect_walks) {
+      REQUIRE(walked > 100);
+    } else {
+      REQUIRE(walked == 0);
+    }
   }
 }
 
@@ -292,6 +313,7 @@ TEST_CASE("manifold shift at Cornell-box scale: base chains re-trace onto their 
   const auto s = scene::load_scene(std::string(DP_SOURCE_DIR) + "/scenes/cornell_specular.yaml");
   gradients::ManifoldShiftOptions opt;
   opt.reconnection.threshold = 0.05f;
+  opt.emitter_chains_only = false;
   const gradients::ManifoldShift shift(*s, opt);
   const double tol = 1e-4 * double(s->scene_radius());
   int chains = 0, off = 0, walked = 0, reverse_ok = 0, jj_loose = 0;
