@@ -6,6 +6,7 @@
 // only). The resolution is reduced through the scene's camera (a YAML variant in memory).
 // Usage: bench_gpt SCENE.yaml... [--res N] [--ref-seconds S] [--seconds S] [--threads T]
 //                  [--shifts reconnection,manifold] [--region X0 Y0 X1 Y1] [--diagnose N] [--seed S]
+//                  [--gradvar RUNS SPP]
 // (--seed offsets the seeds of the equal-time runs; every shift row of a scene uses the
 // same G-PT seed, so its base paths are the same and the rows differ by the shift.)
 // Prints one CSV row per scene and G-PT shift (`--set shift=...`; each row has its own
@@ -14,6 +15,7 @@
 // the image, e.g. the caustic under the glass sphere of cornell_specular.yaml: 0.5 0.78
 // 0.9 0.97) adds the relMSE of PT, L1 and L2 over that window. G-PT's shift counters
 // (failures by cause, steps per strategy, manifold walks) go to stderr.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -105,6 +107,7 @@ void diagnose(const scene::Scene& s, const std::string& path_name, int n) {
     int64_t paths = 0, dark = 0;
     int64_t fail[gradients::kShiftStatusCount] = {};
     double sq = 0, base_sq = 0, wsq = 0;
+    std::vector<double> log_ratio;  // |log10 r| of offsets that carry light
   };
   Acc acc[2][3];
   core::Rng rng(99, 1);
@@ -141,6 +144,7 @@ void diagnose(const scene::Scene& s, const std::string& path_name, int n) {
         else if (!(fo > 0.0)) ++a.dark;
         a.sq += (fo - fb) * (fo - fb);
         const double wgt = alive ? 1.0 / (1.0 + ratio * ratio) : 1.0;
+        if (alive && fo > 0.0 && ratio > 0.0) a.log_ratio.push_back(std::abs(std::log10(ratio)));
         a.wsq += wgt * wgt * (fo - fb) * (fo - fb);
         a.base_sq += fb * fb;
       }
@@ -163,7 +167,60 @@ void diagnose(const scene::Scene& s, const std::string& path_name, int n) {
                    "sq base %.3f\n",
                    100.0 * double(a.dark) / double(a.paths), 100.0 * a.sq / total, a.sq / a.base_sq,
                    100.0 * a.wsq / wtotal, a.wsq / a.base_sq);
+      std::vector<double> lr = a.log_ratio;
+      std::sort(lr.begin(), lr.end());
+      auto q = [&](double f) { return lr.empty() ? 0.0 : lr[std::min(lr.size() - 1, size_t(f * double(lr.size())))]; };
+      std::fprintf(stderr, "diagnose,%s,%s,%s,lit offsets %zu,|log10 r| median %.3f p90 %.3f p99 %.3f\n",
+                   path_name.c_str(), shifts[t]->name().c_str(), kClass[c], lr.size(), q(0.5), q(0.9), q(0.99));
     }
+  }
+}
+
+// --gradvar RUNS SPP: per-pixel variance of G-PT's gradients (dx, dy) and of its
+// reconstructions over RUNS independent renders of SPP samples per pixel (equal samples,
+// not equal time), averaged over the --region window and over the image, per shift.
+void gradient_variance(const scene::Scene& s, const std::string& path_name, const std::vector<std::string>& shifts,
+                       int runs, int spp, int threads, const double* win) {
+  const int w = s.camera().width(), h = s.camera().height();
+  const int x0 = int(win[0] * w), y0 = int(win[1] * h), x1 = int(win[2] * w), y1 = int(win[3] * h);
+  for (const auto& shift : shifts) {
+    const char* names[4] = {"dx", "dy", "recon_l1", "recon_l2"};
+    std::vector<std::vector<double>> sum(4, std::vector<double>(size_t(w * h), 0.0)), sq = sum;
+    for (int r = 0; r < runs; ++r) {
+      integrators::Settings settings;
+      settings.set("shift", shift);
+      auto in = integrators::make_integrator("gpt", settings);
+      integrators::RenderOptions opt;
+      opt.spp = spp;
+      opt.threads = threads;
+      opt.seed = 500 + uint64_t(r);
+      opt.quiet = true;
+      opt.max_depth = s.integrator_defaults().max_depth;
+      const auto res = in->render(s, opt);
+      for (int l = 0; l < 4; ++l) {
+        const core::Image& img = layer(res, names[l]);
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const double v = double(img(x, y).sum()) / 3.0;
+            sum[size_t(l)][size_t(y * w + x)] += v;
+            sq[size_t(l)][size_t(y * w + x)] += v * v;
+          }
+      }
+    }
+    std::fprintf(stderr, "gradvar,%s,%s,runs %d spp %d", path_name.c_str(), shift.c_str(), runs, spp);
+    for (int l = 0; l < 4; ++l) {
+      double vr = 0, va = 0;
+      int nr = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const double m = sum[size_t(l)][size_t(y * w + x)] / runs;
+          const double var = (sq[size_t(l)][size_t(y * w + x)] - runs * m * m) / (runs - 1);
+          va += var;
+          if (x >= x0 && x < x1 && y >= y0 && y < y1) vr += var, ++nr;
+        }
+      std::fprintf(stderr, ",%s var region %.4g image %.4g", names[l], nr ? vr / nr : 0.0, va / (w * h));
+    }
+    std::fprintf(stderr, "\n");
   }
 }
 }  // namespace
@@ -175,6 +232,7 @@ int main(int argc, char** argv) {
   double region[4] = {0, 0, 1, 1};
   int diagnose_paths = 0;
   uint64_t seed = 0;
+  int gradvar_runs = 0, gradvar_spp = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--res") && i + 1 < argc) res = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--ref-seconds") && i + 1 < argc) ref_seconds = std::atof(argv[++i]);
@@ -184,6 +242,9 @@ int main(int argc, char** argv) {
       shifts.clear();
       std::stringstream list(argv[++i]);
       for (std::string item; std::getline(list, item, ',');) shifts.push_back(item);
+    } else if (!std::strcmp(argv[i], "--gradvar") && i + 2 < argc) {
+      gradvar_runs = std::atoi(argv[++i]);
+      gradvar_spp = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--diagnose") && i + 1 < argc) {
@@ -192,6 +253,11 @@ int main(int argc, char** argv) {
       for (double& v : region) v = std::atof(argv[++i]);
     }
     else scenes.emplace_back(argv[i]);
+  }
+  if (gradvar_runs > 1) {
+    for (const auto& path : scenes)
+      gradient_variance(*load_at_resolution(path, res), path, shifts, gradvar_runs, gradvar_spp, threads, region);
+    return 0;
   }
   if (diagnose_paths > 0) {
     for (const auto& path : scenes) diagnose(*load_at_resolution(path, res), path, diagnose_paths);
