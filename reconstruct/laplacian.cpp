@@ -1,5 +1,6 @@
 #include "reconstruct/laplacian.h"
 
+#include <algorithm>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -39,7 +40,14 @@ int resolve_threads(int threads) {
   return std::min(threads, std::max(hw, 1));
 }
 
-Laplacian::Laplacian(const Kernel& kernel) : m_kernel(kernel) {
+namespace {
+
+// Image rows per chunk (see grid_operator.cpp).
+constexpr int kChunkRows = 24;
+
+}  // namespace
+
+Laplacian::Laplacian(const Kernel& kernel) : m_kernel(kernel), m_chunk_rows(row_chunks(kernel.height(), kChunkRows)) {
   const size_t n = kernel.pixels();
   const auto& pairs = kernel.pairs();
   m_offset.assign(n + 1, 0);
@@ -63,8 +71,39 @@ Laplacian::Laplacian(const Kernel& kernel) : m_kernel(kernel) {
     m_nbr[size_t(ej)] = p.i;
     m_row[size_t(ej)] = int32_t(r);
   }
+  // Group and order each pixel's entries (ties in the neighbour keep kernel row order).
+  m_lower_end.resize(n);
+  m_inner_end.resize(n);
+  std::vector<std::pair<int32_t, int32_t>> tmp;  // (neighbour, kernel row)
+  for (size_t c = 0; c < chunks(); ++c) {
+    const size_t lo = chunk_begin(c), hi = chunk_begin(c + 1);
+    for (size_t i = lo; i < hi; ++i) {
+      tmp.clear();
+      for (int64_t e = m_offset[i]; e < m_offset[i + 1]; ++e) tmp.emplace_back(m_nbr[size_t(e)], m_row[size_t(e)]);
+      const auto group = [&](const std::pair<int32_t, int32_t>& a) {
+        const size_t nb = size_t(a.first);
+        return nb >= lo && nb < hi ? (nb < i ? 0 : 1) : 2;
+      };
+      std::stable_sort(tmp.begin(), tmp.end(), [&](const auto& a, const auto& b) {
+        const int ga = group(a), gb = group(b);
+        if (ga != gb) return ga < gb;
+        if (ga == 0) return a.first < b.first;
+        if (ga == 1) return a.first > b.first;
+        return false;
+      });
+      int64_t e = m_offset[i];
+      m_lower_end[i] = m_inner_end[i] = e;
+      for (const auto& a : tmp) {
+        m_nbr[size_t(e)] = a.first;
+        m_row[size_t(e)] = a.second;
+        ++e;
+        if (group(a) == 0) m_lower_end[i] = e;
+        if (group(a) <= 1) m_inner_end[i] = e;
+      }
+    }
+  }
   m_diag.assign(n, 0.0f);
-  m_inv_diag.assign(n, 0.0f);
+  m_inv_pivot.assign(n, 0.0f);
 }
 
 void Laplacian::set_weights(const float* row_weights, const float* pixel_weights, float alpha, int threads) {
@@ -75,20 +114,88 @@ void Laplacian::set_weights(const float* row_weights, const float* pixel_weights
     m_pixel_weight.assign(pixel_weights, pixel_weights + n);
   else
     m_pixel_weight.clear();
-  threads = resolve_threads(threads);
+  // Per chunk: weights and diagonal, then the block incomplete Cholesky pivots
+  // D_i = A_ii - sum_e w_e^2 / D_n over the entries e of pixel i whose neighbour n is in
+  // the chunk and before i (zero fill; a pair listed twice counts as two entries, which
+  // only makes D larger: still SPD).
+  const int nc = int(chunks());
+  threads = std::min(resolve_threads(threads), nc);
   run_team(threads, [&](int t) {
-    const size_t lo = part_begin(n, threads, t), hi = part_begin(n, threads, t + 1);
-    for (size_t i = lo; i < hi; ++i) {
-      double d = double(m_alpha2) * (pixel_weights ? double(pixel_weights[i]) : 1.0);
-      for (int64_t e = m_offset[i]; e < m_offset[i + 1]; ++e) {
-        const float w = row_weights ? row_weights[m_row[size_t(e)]] : 1.0f;
-        m_weight[size_t(e)] = w;
-        d += double(w);
+    for (int c = t; c < nc; c += threads) {
+      const size_t lo = chunk_begin(size_t(c)), hi = chunk_begin(size_t(c) + 1);
+      for (size_t i = lo; i < hi; ++i) {
+        double d = double(m_alpha2) * (pixel_weights ? double(pixel_weights[i]) : 1.0);
+        for (int64_t e = m_offset[i]; e < m_offset[i + 1]; ++e) {
+          const float w = row_weights ? row_weights[m_row[size_t(e)]] : 1.0f;
+          m_weight[size_t(e)] = w;
+          d += double(w);
+        }
+        m_diag[i] = float(d);
+        double piv = double(m_diag[i]);
+        for (int64_t e = m_offset[i]; e < m_lower_end[i]; ++e) {
+          const size_t nb = size_t(m_nbr[size_t(e)]);
+          piv -= double(m_weight[size_t(e)]) * double(m_weight[size_t(e)]) * double(m_inv_pivot[nb]);
+        }
+        // Positive in exact arithmetic (M-matrix); guard against round-off anyway.
+        if (!(piv > 1e-6 * d)) piv = d;
+        m_inv_pivot[i] = piv > 0.0 ? float(1.0 / piv) : 0.0f;
       }
-      m_diag[i] = float(d);
-      m_inv_diag[i] = d > 0.0 ? float(1.0 / d) : 0.0f;
     }
   });
+}
+
+void Laplacian::apply(size_t c, const Vec4* in, Vec4* out) const {
+  const int64_t* off = m_offset.data();
+  const int32_t* nbr = m_nbr.data();
+  const float* wt = m_weight.data();
+  for (size_t i = chunk_begin(c), hi = chunk_begin(c + 1); i < hi; ++i) {
+    Vec4 a = m_diag[i] * in[i];
+    for (int64_t e = off[i], end = off[i + 1]; e < end; ++e) a -= wt[e] * in[nbr[e]];
+    out[i] = a;
+  }
+}
+
+void Laplacian::direction(size_t c, const Vec4* z, const Vec4* p_old, Vec4 beta, Vec4* p_new, Vec4* q, Vec4d& pq,
+                          Vec4*) const {
+  const int64_t* off = m_offset.data();
+  const int32_t* nbr = m_nbr.data();
+  const float* wt = m_weight.data();
+  const size_t lo = chunk_begin(c), hi = chunk_begin(c + 1);
+  for (size_t i = lo; i < hi; ++i) p_new[i] = z[i] + beta * p_old[i];
+  for (size_t i = lo; i < hi; ++i) {
+    Vec4 a = m_diag[i] * p_new[i];
+    const int64_t inner = m_inner_end[i];
+    for (int64_t e = off[i]; e < inner; ++e) a -= wt[e] * p_new[nbr[e]];
+    // Neighbours in other chunks: their p_new is being written by another thread; form
+    // the same value from z and p_old, which nobody writes in this phase.
+    for (int64_t e = inner, end = off[i + 1]; e < end; ++e) {
+      const size_t nb = size_t(nbr[e]);
+      a -= wt[e] * (z[nb] + beta * p_old[nb]);
+    }
+    q[i] = a;
+    accumulate(pq, p_new[i] * a);
+  }
+}
+
+void Laplacian::precondition(size_t c, const Vec4* r, Vec4* z) const {
+  // Solve (D + L) t = r, then (D + L^T) z = D t, within the chunk; A_ij = -w.
+  const int64_t* off = m_offset.data();
+  const int32_t* nbr = m_nbr.data();
+  const float* ip = m_inv_pivot.data();
+  const size_t lo = chunk_begin(c), hi = chunk_begin(c + 1);
+  const int64_t* lower_end = m_lower_end.data();
+  const int64_t* inner_end = m_inner_end.data();
+  const float* wt = m_weight.data();
+  for (size_t i = lo; i < hi; ++i) {
+    Vec4 t = r[i];
+    for (int64_t e = off[i], end = lower_end[i]; e < end; ++e) t += wt[e] * z[nbr[e]];
+    z[i] = t * ip[i];
+  }
+  for (size_t i = hi; i-- > lo;) {
+    Vec4 s = {};
+    for (int64_t e = lower_end[i], end = inner_end[i]; e < end; ++e) s += wt[e] * z[nbr[e]];
+    z[i] += s * ip[i];
+  }
 }
 
 void Laplacian::apply_dot(const float* in, float* out, size_t lo, size_t hi, double* dot) const {

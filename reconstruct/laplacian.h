@@ -6,7 +6,8 @@
 //     (A x)_i = (sum_r w_r + alpha^2 p_i) x_i - sum_r w_r x_n.
 // For the forward-difference grid with W = P = 1 this is the 5-point Laplacian with
 // Neumann boundaries plus alpha^2 (Bhat et al. 2008).
-// Vectors are RGB interleaved floats (3 per pixel); the three channels share A.
+// apply()/rhs() take RGB interleaved floats (3 per pixel); the ChunkedOperator interface
+// (pcg.h) takes Vec4 per pixel. The three channels share A.
 // The Laplacian keeps a reference to the kernel, which must outlive it.
 #pragma once
 
@@ -15,16 +16,17 @@
 #include <vector>
 
 #include "core/image.h"
+#include "reconstruct/pcg.h"
 #include "reconstruct/problem.h"
 
 namespace dp::reconstruct {
 
-class Laplacian {
+class Laplacian final : public ChunkedOperator {
  public:
   explicit Laplacian(const Kernel& kernel);
 
   // Sets W and P (nullptr = all ones) and alpha (>= 0; 0 gives the bare graph
-  // Laplacian H^T W H). Recomputes the diagonal and its inverse (Jacobi preconditioner).
+  // Laplacian H^T W H). Recomputes the diagonal and the block incomplete Cholesky pivots.
   void set_weights(const float* row_weights, const float* pixel_weights, float alpha, int threads);
 
   // out[3*lo .. 3*hi) = (A in) for pixels [lo, hi).
@@ -35,17 +37,31 @@ class Laplacian {
   // out = H^T W b + alpha^2 P g, the right-hand side of the normal equations.
   void rhs(const std::vector<Rgb>& b, const float* g, float* out, int threads) const;
 
-  size_t pixels() const { return m_diag.size(); }
-  const float* inv_diag() const { return m_inv_diag.data(); }
   const Kernel& kernel() const { return m_kernel; }
+
+  // ChunkedOperator: chunks of image rows; couplings to pixels outside a chunk are
+  // dropped from its preconditioner block.
+  size_t pixels() const override { return m_diag.size(); }
+  size_t chunks() const override { return m_chunk_rows.size() - 1; }
+  size_t chunk_begin(size_t c) const override { return size_t(m_chunk_rows[c]) * size_t(m_kernel.width()); }
+  void apply(size_t c, const Vec4* in, Vec4* out) const override;
+  void direction(size_t c, const Vec4* z, const Vec4* p_old, Vec4 beta, Vec4* p_new, Vec4* q, Vec4d& pq,
+                 Vec4* scratch) const override;
+  void precondition(size_t c, const Vec4* r, Vec4* z) const override;
 
  private:
   const Kernel& m_kernel;
-  std::vector<int64_t> m_offset;  // CSR row starts, pixels()+1 entries
+  // CSR row starts, pixels()+1 entries. A pixel's entries are grouped: neighbours in its
+  // chunk before it (ascending), in its chunk after it (descending), then outside its
+  // chunk (kernel row order); m_lower_end / m_inner_end mark the group ends. The nearest
+  // neighbour comes last in each substitution, which shortens its dependency chain.
+  std::vector<int64_t> m_offset;
+  std::vector<int64_t> m_lower_end, m_inner_end;
   std::vector<int32_t> m_nbr;     // neighbour pixel of each entry
   std::vector<int32_t> m_row;     // kernel row of each entry
   std::vector<float> m_weight;    // w_r of each entry
-  std::vector<float> m_diag, m_inv_diag;
+  std::vector<int> m_chunk_rows;
+  std::vector<float> m_diag, m_inv_pivot;
   float m_alpha2 = 0.0f;
   std::vector<float> m_pixel_weight;  // empty = 1
 };

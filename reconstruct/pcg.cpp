@@ -1,129 +1,156 @@
 #include "reconstruct/pcg.h"
 
 #include <algorithm>
+#include <atomic>
 #include <barrier>
 #include <cmath>
 
 #include "core/error.h"
+#include "reconstruct/laplacian.h"
 
 namespace dp::reconstruct {
 
+std::vector<int> row_chunks(int height, int rows) {
+  rows = std::max(rows, 1);
+  std::vector<int> out;
+  const int count = std::max(1, (height + rows / 2) / rows);
+  for (int c = 0; c <= count; ++c) out.push_back(int(int64_t(height) * c / count));
+  return out;
+}
+
+void ChunkedOperator::update(size_t c, Vec4 alpha, const Vec4* p, const Vec4* q, Vec4* x, Vec4* r, Vec4* z,
+                             Vec4d& rz, Vec4d& rr) const {
+  const size_t lo = chunk_begin(c), hi = chunk_begin(c + 1);
+  for (size_t i = lo; i < hi; ++i) {
+    x[i] += alpha * p[i];
+    r[i] -= alpha * q[i];
+  }
+  precondition(c, r, z);
+  for (size_t i = lo; i < hi; ++i) {
+    accumulate(rz, r[i] * z[i]);
+    accumulate(rr, r[i] * r[i]);
+  }
+}
+
 namespace {
 
-// Per-thread partial sums, one cache line apart. Slots: [0..3) r.z, [3..6) r.r,
-// [6..9) rhs.rhs or p.Ap.
+// Per-chunk partial sums, one cache line apart.
 struct alignas(64) Partial {
-  double v[9] = {};
+  Vec4d a, b, c;
 };
-
-void reduce(const std::vector<Partial>& parts, double out[9]) {
-  std::fill(out, out + 9, 0.0);
-  for (const Partial& p : parts)  // fixed order: deterministic
-    for (int k = 0; k < 9; ++k) out[k] += p.v[k];
-}
 
 }  // namespace
 
-CgStats pcg(const Laplacian& A, const float* rhs, float* x, const CgSettings& settings) {
-  const size_t n = A.pixels();
+CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings& settings, CgWorkspace* workspace) {
   DP_CHECK(settings.max_iterations >= 0, "max_iterations must be >= 0");
-  const int threads = int(std::max<size_t>(1, std::min<size_t>(size_t(resolve_threads(settings.threads)), n / 4096 + 1)));
-  std::vector<float> r(3 * n), p(3 * n), q(3 * n);
-  std::vector<Partial> part_a(static_cast<size_t>(threads)), part_b(static_cast<size_t>(threads));
-  std::barrier sync(threads);
-  const float* inv_diag = A.inv_diag();
-  CgStats stats;
+  const size_t n = A.pixels(), nc = A.chunks();
+  const int threads = int(std::max<size_t>(1, std::min<size_t>(size_t(resolve_threads(settings.threads)), nc)));
+  const Vec4 zero = {};
+  CgWorkspace local;
+  CgWorkspace& ws = workspace ? *workspace : local;
+  for (std::vector<Vec4>* v : {&ws.r, &ws.z, &ws.q, &ws.pa, &ws.pb}) v->resize(n);
+  ws.scratch.resize(A.scratch_size() * size_t(threads));
+  std::vector<Vec4>& r = ws.r;
+  std::vector<Vec4>& z = ws.z;
+  std::vector<Vec4>& q = ws.q;
+  std::vector<Partial> part(nc);
+
+  // Shared state, written only by the barrier's completion step (all threads stopped).
+  enum class Phase { init, a, b };
+  Phase phase = Phase::init;
+  Vec4* p_old = ws.pa.data();
+  Vec4* p_new = ws.pb.data();
+  Vec4 alpha = zero, beta = zero;
+  double rz[3] = {}, rr[3] = {}, bb[3] = {}, limit[3] = {};
+  bool active[3] = {false, false, false};
+  bool go = false;
+  int it = 0;
+  std::atomic<size_t> next{0};
+
+  const auto sum = [&](Vec4d Partial::*field) {
+    Vec4d s;
+    for (const Partial& p : part) s += p.*field;  // chunk order: deterministic
+    return s;
+  };
+  const auto completion = [&]() noexcept {
+    next.store(0, std::memory_order_relaxed);
+    if (phase == Phase::init || phase == Phase::b) {
+      const Vec4d s_rz = sum(&Partial::a), s_rr = sum(&Partial::b);
+      if (phase == Phase::init) {
+        const Vec4d s_bb = sum(&Partial::c);
+        for (int c = 0; c < 3; ++c) {
+          rz[c] = s_rz[c];
+          rr[c] = s_rr[c];
+          bb[c] = s_bb[c];
+          // An all-zero right-hand side has the solution 0: stop at a tiny absolute residual.
+          limit[c] = settings.tolerance * std::sqrt(std::max(bb[c], 1e-60));
+          active[c] = std::sqrt(rr[c]) > limit[c];
+        }
+        beta = zero;
+      } else {
+        for (int c = 0; c < 3; ++c) {
+          beta[c] = active[c] && rz[c] > 0.0 ? float(s_rz[c] / rz[c]) : 0.0f;
+          if (!active[c]) continue;
+          rz[c] = s_rz[c];
+          rr[c] = s_rr[c];
+          active[c] = std::sqrt(rr[c]) > limit[c];
+        }
+        std::swap(p_old, p_new);
+        ++it;
+      }
+      go = it < settings.max_iterations && (active[0] || active[1] || active[2]);
+      phase = Phase::a;
+    } else {
+      const Vec4d pq = sum(&Partial::a);
+      for (int c = 0; c < 3; ++c) alpha[c] = active[c] && pq[c] > 0.0 ? float(rz[c] / pq[c]) : 0.0f;
+      phase = Phase::b;
+    }
+  };
+  std::barrier sync(threads, completion);
 
   run_team(threads, [&](int t) {
-    const size_t lo = part_begin(n, threads, t), hi = part_begin(n, threads, t + 1);
-    double tot[9];
-    // r = rhs - A x, p = M^-1 r.
-    A.apply(x, q.data(), lo, hi);
-    {
+    Vec4* tmp = ws.scratch.data() + A.scratch_size() * size_t(t);
+    const auto for_chunks = [&](auto&& fn) {
+      for (size_t c; (c = next.fetch_add(1, std::memory_order_relaxed)) < nc;) fn(c);
+      sync.arrive_and_wait();
+    };
+    // r = rhs - A x, z = M^-1 r.
+    for_chunks([&](size_t c) {
+      const size_t lo = A.chunk_begin(c), hi = A.chunk_begin(c + 1);
+      A.apply(c, x, q.data());
+      for (size_t i = lo; i < hi; ++i) {
+        r[i] = rhs[i] - q[i];
+        p_old[i] = zero;  // beta = 0 in the first step; no stale NaN from a reused workspace
+      }
+      A.precondition(c, r.data(), z.data());
       Partial acc;
       for (size_t i = lo; i < hi; ++i) {
-        const float m = inv_diag[i];
-        for (size_t c = 0; c < 3; ++c) {
-          const size_t k = 3 * i + c;
-          const float ri = rhs[k] - q[k];
-          r[k] = ri;
-          p[k] = m * ri;
-          acc.v[c] += double(ri) * double(m * ri);
-          acc.v[3 + c] += double(ri) * double(ri);
-          acc.v[6 + c] += double(rhs[k]) * double(rhs[k]);
-        }
+        accumulate(acc.a, r[i] * z[i]);
+        accumulate(acc.b, r[i] * r[i]);
+        accumulate(acc.c, rhs[i] * rhs[i]);
       }
-      part_b[size_t(t)] = acc;
-    }
-    sync.arrive_and_wait();
-    reduce(part_b, tot);
-    double rz[3], limit[3], rr[3];
-    bool active[3];
-    for (int c = 0; c < 3; ++c) {
-      rz[c] = tot[c];
-      rr[c] = tot[3 + c];
-      // An all-zero right-hand side has the solution 0: stop at a tiny absolute residual.
-      limit[c] = settings.tolerance * std::sqrt(std::max(tot[6 + c], 1e-60));
-      active[c] = std::sqrt(rr[c]) > limit[c];
-    }
-    const double bnorm2[3] = {tot[6], tot[7], tot[8]};
-    int it = 0;
-    while (it < settings.max_iterations && (active[0] || active[1] || active[2])) {
-      // q = A p, alpha = (r.z) / (p.q).
-      {
+      part[c] = acc;
+    });
+    while (go) {
+      for_chunks([&](size_t c) {
         Partial acc;
-        A.apply_dot(p.data(), q.data(), lo, hi, acc.v + 6);
-        part_a[size_t(t)] = acc;
-      }
-      sync.arrive_and_wait();
-      reduce(part_a, tot);
-      float step[3];
-      for (int c = 0; c < 3; ++c)
-        step[c] = active[c] && tot[6 + c] > 0.0 ? float(rz[c] / tot[6 + c]) : 0.0f;
-      // x += alpha p, r -= alpha q, new r.z and r.r.
-      {
+        A.direction(c, z.data(), p_old, beta, p_new, q.data(), acc.a, tmp);
+        part[c] = acc;
+      });
+      for_chunks([&](size_t c) {
         Partial acc;
-        for (size_t i = lo; i < hi; ++i) {
-          const float m = inv_diag[i];
-          for (size_t c = 0; c < 3; ++c) {
-            const size_t k = 3 * i + c;
-            x[k] += step[c] * p[k];
-            const float ri = r[k] - step[c] * q[k];
-            r[k] = ri;
-            acc.v[c] += double(ri) * double(m * ri);
-            acc.v[3 + c] += double(ri) * double(ri);
-          }
-        }
-        part_b[size_t(t)] = acc;
-      }
-      sync.arrive_and_wait();
-      reduce(part_b, tot);
-      float beta[3];
-      for (int c = 0; c < 3; ++c) {
-        beta[c] = active[c] && rz[c] > 0.0 ? float(tot[c] / rz[c]) : 0.0f;
-        if (active[c]) {
-          rz[c] = tot[c];
-          rr[c] = tot[3 + c];
-          active[c] = std::sqrt(rr[c]) > limit[c] && tot[6 + c] >= 0.0;
-        }
-      }
-      // p = M^-1 r + beta p.
-      for (size_t i = lo; i < hi; ++i) {
-        const float m = inv_diag[i];
-        for (size_t c = 0; c < 3; ++c) p[3 * i + c] = m * r[3 * i + c] + beta[c] * p[3 * i + c];
-      }
-      sync.arrive_and_wait();  // p complete before the next A p reads neighbours
-      ++it;
-    }
-    if (t == 0) {
-      stats.iterations = it;
-      stats.converged = !(active[0] || active[1] || active[2]);
-      double rel = 0.0;
-      for (int c = 0; c < 3; ++c)
-        rel = std::max(rel, bnorm2[c] > 0.0 ? std::sqrt(rr[c] / bnorm2[c]) : std::sqrt(rr[c]));
-      stats.relative_residual = rel;
+        A.update(c, alpha, p_new, q.data(), x, r.data(), z.data(), acc.a, acc.b);
+        part[c] = acc;
+      });
     }
   });
+
+  CgStats stats;
+  stats.iterations = it;
+  stats.converged = !(active[0] || active[1] || active[2]);
+  double rel = 0.0;
+  for (int c = 0; c < 3; ++c) rel = std::max(rel, bb[c] > 0.0 ? std::sqrt(rr[c] / bb[c]) : std::sqrt(rr[c]));
+  stats.relative_residual = rel;
   return stats;
 }
 

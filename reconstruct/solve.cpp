@@ -1,12 +1,14 @@
 #include "reconstruct/solve.h"
 
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "core/error.h"
 #include "core/log.h"
 #include "core/timer.h"
 #include "reconstruct/dct_solver.h"
+#include "reconstruct/grid_operator.h"
 #include "reconstruct/laplacian.h"
 #include "reconstruct/pcg.h"
 
@@ -82,11 +84,51 @@ Prepared prepare(const Problem& problem) {
   return out;
 }
 
-core::Image to_image(int width, int height, const std::vector<float>& v) {
+core::Image to_image(int width, int height, const std::vector<Vec4>& v) {
   core::Image img(width, height);
-  for (size_t i = 0; i < img.size(); ++i) img[i] = Rgb(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  for (size_t i = 0; i < img.size(); ++i) img[i] = to_rgb(v[i]);
   return img;
 }
+
+// The CG operator: the index-free GridOperator for forward-difference grid kernels,
+// the CSR Laplacian for any other kernel.
+class Operator {
+ public:
+  explicit Operator(const Kernel& k) {
+    if (k.is_forward_difference_grid())
+      m_grid = std::make_unique<GridOperator>(k.width(), k.height());
+    else
+      m_csr = std::make_unique<Laplacian>(k);
+  }
+  const ChunkedOperator& op() const {
+    if (m_grid) return *m_grid;
+    return *m_csr;
+  }
+  void set_weights(const std::vector<float>& rw, const std::vector<float>& pw, float alpha, int threads) {
+    const float* r = rw.empty() ? nullptr : rw.data();
+    const float* p = pw.empty() ? nullptr : pw.data();
+    if (m_grid)
+      m_grid->set_weights(r, p, alpha, threads);
+    else
+      m_csr->set_weights(r, p, alpha, threads);
+  }
+  // out = H^T W b + alpha^2 P g; g given both RGB interleaved and as Vec4.
+  void rhs(const std::vector<Rgb>& b, const std::vector<float>& g, const std::vector<Vec4>& g4,
+           std::vector<Vec4>& out, int threads) const {
+    out.resize(g4.size());
+    if (m_grid) {
+      m_grid->rhs(b, g4.data(), out.data(), threads);
+      return;
+    }
+    std::vector<float> tmp(g.size());
+    m_csr->rhs(b, g.data(), tmp.data(), threads);
+    out = to_vec4(tmp);
+  }
+
+ private:
+  std::unique_ptr<GridOperator> m_grid;
+  std::unique_ptr<Laplacian> m_csr;
+};
 
 // H^T b + alpha^2 g for the forward-difference grid (unit weights):
 // (H^T b)(x,y) = dx(x-1,y) - dx(x,y) + dy(x,y-1) - dy(x,y), absent rows omitted.
@@ -116,28 +158,27 @@ bool direct_applicable(const Problem& problem, const Prepared& in) {
 
 // The L2 solve shared by solve_l2 and IRLS iteration 0. Writes x; returns CG stats
 // (iterations 0 for the DCT).
-CgStats l2_into(const Problem& problem, const Prepared& in, const SolveOptions& options, bool use_direct,
-                int cg_iterations, double cg_tolerance, Laplacian* A, std::vector<float>& x) {
+CgStats l2_into(const Problem& problem, const Prepared& in, const std::vector<Vec4>& g4, const SolveOptions& options,
+                bool use_direct, int cg_iterations, double cg_tolerance, Operator* A, std::vector<Vec4>& x) {
   const int threads = resolve_threads(options.threads);
   if (use_direct) {
     std::vector<float> rhs;
     grid_rhs(problem.kernel, in.b, in.g, problem.alpha, rhs, threads);
-    x.resize(rhs.size());
     // Bhat et al. 2008: (H^T H + alpha^2 I) I = H^T b + alpha^2 I_g, diagonalized by the DCT.
-    dct_solve(problem.kernel.width(), problem.kernel.height(), rhs.data(), x.data(), 1.0,
+    dct_solve(problem.kernel.width(), problem.kernel.height(), rhs.data(), rhs.data(), 1.0,
               double(problem.alpha) * double(problem.alpha), threads);
+    x = to_vec4(rhs);
     return {};
   }
-  A->set_weights(in.row_w.empty() ? nullptr : in.row_w.data(), in.pixel_w.empty() ? nullptr : in.pixel_w.data(),
-                 problem.alpha, threads);
-  std::vector<float> rhs(in.g.size());
-  A->rhs(in.b, in.g.data(), rhs.data(), threads);
-  x = in.g;  // warm start from the primal
+  A->set_weights(in.row_w, in.pixel_w, problem.alpha, threads);
+  std::vector<Vec4> rhs;
+  A->rhs(in.b, in.g, g4, rhs, threads);
+  x = g4;  // warm start from the primal
   CgSettings s;
   s.max_iterations = cg_iterations;
   s.tolerance = cg_tolerance;
   s.threads = threads;
-  return pcg(*A, rhs.data(), x.data(), s);
+  return pcg(A->op(), rhs.data(), x.data(), s);
 }
 
 bool choose_direct(const Problem& problem, const Prepared& in, L2Method method) {
@@ -155,15 +196,15 @@ SolveResult solve_l2(const Problem& problem, const SolveOptions& options) {
   const core::Timer timer;
   const Prepared in = prepare(problem);
   const bool direct = choose_direct(problem, in, options.method);
-  std::vector<float> x;
+  std::vector<Vec4> x;
   SolveResult result;
   if (direct) {
-    l2_into(problem, in, options, true, 0, 0.0, nullptr, x);
+    l2_into(problem, in, {}, options, true, 0, 0.0, nullptr, x);
     result.method = "dct";
   } else {
-    Laplacian A(problem.kernel);
-    const CgStats st =
-        l2_into(problem, in, options, false, options.cg_max_iterations, options.cg_tolerance, &A, x);
+    Operator A(problem.kernel);
+    const CgStats st = l2_into(problem, in, to_vec4(in.g), options, false, options.cg_max_iterations,
+                               options.cg_tolerance, &A, x);
     result.method = "pcg";
     result.cg_iterations = st.iterations;
     result.relative_residual = st.relative_residual;
@@ -185,15 +226,18 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
   const Kernel& k = problem.kernel;
   const size_t n = k.pixels(), rows = k.rows();
   const int threads = resolve_threads(options.threads);
-  Laplacian A(k);
-  std::vector<float> x;
+  Operator A(k);
+  const std::vector<Vec4> g4 = to_vec4(in.g);
+  std::vector<Vec4> x, rhs;
   SolveResult result;
   result.method = direct ? "irls+dct" : "irls+pcg";
   // IRLS iteration 0: plain L2.
-  CgStats st = l2_into(problem, in, options, direct, options.irls_cg_iterations, options.irls_cg_tolerance, &A, x);
+  CgStats st =
+      l2_into(problem, in, g4, options, direct, options.irls_cg_iterations, options.irls_cg_tolerance, &A, x);
   result.cg_iterations += st.iterations;
 
-  std::vector<float> row_w(rows), pixel_w(n), rhs(3 * n);
+  std::vector<float> row_w(rows), pixel_w(n);
+  CgWorkspace workspace;
   const float alpha = problem.alpha;
   const auto& pairs = k.pairs();
   struct alignas(64) Sum {
@@ -209,7 +253,7 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
         const PixelPair& p = pairs[r];
         double e2 = 0.0;
         for (size_t c = 0; c < 3; ++c) {
-          const double e = double(x[3 * size_t(p.j) + c]) - double(x[3 * size_t(p.i) + c]) - double(in.b[r][int(c)]);
+          const double e = double(x[size_t(p.j)][c]) - double(x[size_t(p.i)][c]) - double(in.b[r][int(c)]);
           e2 += e * e;
         }
         const double w = 1.0 / (std::sqrt(e2) + reg);
@@ -219,7 +263,7 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
       for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i) {
         double e2 = 0.0;
         for (size_t c = 0; c < 3; ++c) {
-          const double e = double(alpha) * (double(x[3 * i + c]) - double(in.g[3 * i + c]));
+          const double e = double(alpha) * (double(x[i][c]) - double(in.g[3 * i + c]));
           e2 += e * e;
         }
         const double w = 1.0 / (std::sqrt(e2) + reg);
@@ -238,13 +282,13 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
       for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i)
         pixel_w[i] *= scale * (in.pixel_w.empty() ? 1.0f : in.pixel_w[i]);
     });
-    A.set_weights(row_w.data(), pixel_w.data(), alpha, threads);
-    A.rhs(in.b, in.g.data(), rhs.data(), threads);
+    A.set_weights(row_w, pixel_w, alpha, threads);
+    A.rhs(in.b, in.g, g4, rhs, threads);
     CgSettings s;
     s.max_iterations = options.irls_cg_iterations;
     s.tolerance = options.irls_cg_tolerance;
     s.threads = threads;
-    st = pcg(A, rhs.data(), x.data(), s);  // warm start from the current image
+    st = pcg(A.op(), rhs.data(), x.data(), s, &workspace);  // warm start from the current image
     result.cg_iterations += st.iterations;
     result.relative_residual = st.relative_residual;
     result.reweightings = it;

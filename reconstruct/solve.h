@@ -4,7 +4,9 @@
 //   i.e. the normal equations (H^T W H + alpha^2 P) I = H^T W b + alpha^2 P I_g
 //   (Lehtinen et al. 2013, Eq. 8; unbiased when b and I_g are). Forward-difference grid
 //   kernels with uniform weights use the exact DCT solve (Bhat et al. 2008); everything
-//   else uses Jacobi-preconditioned CG (pcg.h) warm-started from the primal.
+//   else uses CG with a block incomplete Cholesky preconditioner (pcg.h) warm-started
+//   from the primal, on the index-free GridOperator for grid kernels and the CSR
+//   Laplacian for any other kernel.
 // solve_l1: the group-L1 problem sum_r |(H I - b)_r|_2 + sum_i alpha |I_i - I_g,i|_2
 //   (norms over RGB; Lehtinen 2013 Sec. 5, robust but biased) by iteratively reweighted
 //   least squares as in the reference solver (ALGORITHMS.md): iteration 0 is the L2
