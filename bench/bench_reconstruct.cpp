@@ -3,11 +3,16 @@
 // reweightings <= 3 s). Synthetic input: a smooth image with edges, primal noise
 // sigma 0.2, gradient noise sigma 0.02 (fixed seed). Prints CSV on stdout:
 //   case,width,height,threads,seconds,cg_iterations,relative_residual,rmse
-// Usage: bench_reconstruct [threads=2] [repeats=3] (the minimum over repeats is printed).
+// Usage: bench_reconstruct [threads=2] [repeats=3] [case filter substring]
+// (the median over repeats is printed, then the minimum, then the median process CPU
+// time, which depends less on what else runs on the machine).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <ctime>
+#include <vector>
 
 #include "core/rng.h"
 #include "reconstruct/solve.h"
@@ -66,27 +71,45 @@ double rmse(const core::Image& a, const core::Image& b) {
   return std::sqrt(s / double(3 * a.size()));
 }
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size();
+  return m % 2 ? v[m / 2] : 0.5 * (v[m / 2 - 1] + v[m / 2]);
+}
+
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
-  const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
+  const int repeats = std::max(1, argc > 2 ? std::atoi(argv[2]) : 3);
+  const std::string filter = argc > 3 ? argv[3] : "";
   const int w = 1280, h = 720;
   const core::Image truth = truth_image(w, h);
   const Problem grid = noisy(Kernel::forward_differences(w, h), truth, 1);
   const Problem four = noisy(four_pair_kernel(w, h), truth, 2);
-  std::printf("case,width,height,threads,seconds,cg_iterations,relative_residual,rmse\n");
+  std::printf("case,width,height,threads,seconds,cg_iterations,relative_residual,rmse,min_seconds,cpu_seconds\n");
   const auto run = [&](const char* name, const Problem& p, bool l1, L2Method method) {
+    if (std::string(name).find(filter) == std::string::npos) return;
     SolveOptions o;
     o.threads = threads;
     o.method = method;
-    SolveResult best;
+    SolveResult last;
+    std::vector<double> seconds, cpu;
     for (int r = 0; r < repeats; ++r) {
-      SolveResult res = l1 ? solve_l1(p, o) : solve_l2(p, o);
-      if (r == 0 || res.seconds < best.seconds) best = std::move(res);
+      const double c0 = cpu_seconds();
+      last = l1 ? solve_l1(p, o) : solve_l2(p, o);
+      cpu.push_back(cpu_seconds() - c0);
+      seconds.push_back(last.seconds);
     }
-    std::printf("%s,%d,%d,%d,%.4f,%d,%.3g,%.5f\n", name, w, h, threads, best.seconds, best.cg_iterations,
-                best.relative_residual, rmse(best.image, truth));
+    std::printf("%s,%d,%d,%d,%.4f,%d,%.3g,%.5f,%.4f,%.4f\n", name, w, h, threads, median(seconds), last.cg_iterations,
+                last.relative_residual, rmse(last.image, truth), *std::min_element(seconds.begin(), seconds.end()),
+                median(cpu));
     std::fflush(stdout);
   };
   std::printf("# primal rmse %.5f\n", rmse(grid.primal, truth));
