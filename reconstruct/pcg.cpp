@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <barrier>
 #include <cmath>
 
 #include "core/error.h"
@@ -44,6 +43,7 @@ struct alignas(64) Partial {
 CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings& settings, CgWorkspace* workspace) {
   DP_CHECK(settings.max_iterations >= 0, "max_iterations must be >= 0");
   const size_t n = A.pixels(), nc = A.chunks();
+  DP_CHECK(nc > 0 && nc < (size_t(1) << 31), "pcg: bad chunk count");
   const int threads = int(std::max<size_t>(1, std::min<size_t>(size_t(resolve_threads(settings.threads)), nc)));
   const Vec4 zero = {};
   CgWorkspace local;
@@ -55,28 +55,33 @@ CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings
   std::vector<Vec4>& q = ws.q;
   std::vector<Partial> part(nc);
 
-  // Shared state, written only by the barrier's completion step (all threads stopped).
-  enum class Phase { init, a, b };
-  Phase phase = Phase::init;
+  // Phases: 0 = init (r = rhs - A x, z = M^-1 r), then odd = A, even = B (pcg.h).
+  // There is no barrier: `claim` holds (phase << 32 | next unclaimed chunk); the thread
+  // that completes the last chunk of a phase does the reduction and publishes the next
+  // phase. A thread that is descheduled while holding no chunk delays nobody, and one
+  // that wakes up late just joins the current phase.
+  std::atomic<uint64_t> claim{0};
+  std::atomic<size_t> done{0};
+  std::atomic<bool> finished{false};
+  // Shared CG scalars: written only by the completing thread before it publishes the
+  // next phase, read by workers only after they claimed a chunk of that phase.
   Vec4* p_old = ws.pa.data();
   Vec4* p_new = ws.pb.data();
   Vec4 alpha = zero, beta = zero;
   double rz[3] = {}, rr[3] = {}, bb[3] = {}, limit[3] = {};
   bool active[3] = {false, false, false};
-  bool go = false;
   int it = 0;
-  std::atomic<size_t> next{0};
 
   const auto sum = [&](Vec4d Partial::*field) {
     Vec4d s;
     for (const Partial& p : part) s += p.*field;  // chunk order: deterministic
     return s;
   };
-  const auto completion = [&]() noexcept {
-    next.store(0, std::memory_order_relaxed);
-    if (phase == Phase::init || phase == Phase::b) {
+  const auto complete = [&](uint64_t ph) {
+    bool go = true;
+    if (ph % 2 == 0) {  // init or B: new r.z and r.r
       const Vec4d s_rz = sum(&Partial::a), s_rr = sum(&Partial::b);
-      if (phase == Phase::init) {
+      if (ph == 0) {
         const Vec4d s_bb = sum(&Partial::c);
         for (int c = 0; c < 3; ++c) {
           rz[c] = s_rz[c];
@@ -99,23 +104,19 @@ CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings
         ++it;
       }
       go = it < settings.max_iterations && (active[0] || active[1] || active[2]);
-      phase = Phase::a;
-    } else {
+    } else {  // A: step sizes from p.Ap
       const Vec4d pq = sum(&Partial::a);
       for (int c = 0; c < 3; ++c) alpha[c] = active[c] && pq[c] > 0.0 ? float(rz[c] / pq[c]) : 0.0f;
-      phase = Phase::b;
     }
+    done.store(0, std::memory_order_relaxed);
+    if (!go) finished.store(true, std::memory_order_release);
+    claim.store((ph + 1) << 32, std::memory_order_release);
+    claim.notify_all();
   };
-  std::barrier sync(threads, completion);
 
-  run_team(threads, [&](int t) {
-    Vec4* tmp = ws.scratch.data() + A.scratch_size() * size_t(t);
-    const auto for_chunks = [&](auto&& fn) {
-      for (size_t c; (c = next.fetch_add(1, std::memory_order_relaxed)) < nc;) fn(c);
-      sync.arrive_and_wait();
-    };
-    // r = rhs - A x, z = M^-1 r.
-    for_chunks([&](size_t c) {
+  const auto run_chunk = [&](uint64_t ph, size_t c, Vec4* tmp) {
+    Partial acc;
+    if (ph == 0) {
       const size_t lo = A.chunk_begin(c), hi = A.chunk_begin(c + 1);
       A.apply(c, x, q.data());
       for (size_t i = lo; i < hi; ++i) {
@@ -123,25 +124,34 @@ CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings
         p_old[i] = zero;  // beta = 0 in the first step; no stale NaN from a reused workspace
       }
       A.precondition(c, r.data(), z.data());
-      Partial acc;
       for (size_t i = lo; i < hi; ++i) {
         accumulate(acc.a, r[i] * z[i]);
         accumulate(acc.b, r[i] * r[i]);
         accumulate(acc.c, rhs[i] * rhs[i]);
       }
-      part[c] = acc;
-    });
-    while (go) {
-      for_chunks([&](size_t c) {
-        Partial acc;
-        A.direction(c, z.data(), p_old, beta, p_new, q.data(), acc.a, tmp);
-        part[c] = acc;
-      });
-      for_chunks([&](size_t c) {
-        Partial acc;
-        A.update(c, alpha, p_new, q.data(), x, r.data(), z.data(), acc.a, acc.b);
-        part[c] = acc;
-      });
+    } else if (ph % 2 == 1) {
+      A.direction(c, z.data(), p_old, beta, p_new, q.data(), acc.a, tmp);
+    } else {
+      A.update(c, alpha, p_new, q.data(), x, r.data(), z.data(), acc.a, acc.b);
+    }
+    part[c] = acc;
+  };
+
+  constexpr uint64_t kMask = 0xffffffffu;
+  run_team(threads, [&](int t) {
+    Vec4* tmp = ws.scratch.data() + A.scratch_size() * size_t(t);
+    for (;;) {
+      uint64_t w = claim.load(std::memory_order_acquire);
+      if (finished.load(std::memory_order_acquire)) return;
+      const uint64_t ph = w >> 32;
+      while ((w >> 32) == ph && (w & kMask) < nc) {
+        if (!claim.compare_exchange_weak(w, w + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+        run_chunk(ph, size_t(w & kMask), tmp);
+        if (done.fetch_add(1, std::memory_order_acq_rel) + 1 == nc) complete(ph);
+        w = claim.load(std::memory_order_acquire);
+      }
+      // Every chunk of this phase is claimed: sleep until the next phase is published.
+      if ((w >> 32) == ph) claim.wait(w, std::memory_order_acquire);
     }
   });
 

@@ -5,12 +5,14 @@
 //
 // Parallel structure: the operator splits the pixels into fixed chunks of image rows.
 // Each CG iteration is two phases, each a pass over all chunks handed out dynamically to
-// the threads (a thread descheduled by a busy machine only delays its current chunk):
+// the threads:
 //   A: p = z + beta p_old and q = A p on the chunk (p of neighbouring chunks is formed
 //      on the fly from z and p_old, so no pass of its own is needed), partial p.q;
-//   B: x += alpha p, r -= alpha q, z = M^-1 r on the chunk, partials r.z and r.r;
-// and one barrier per phase, where the per-chunk partials are summed in chunk order.
-// Results are deterministic and independent of the thread count.
+//   B: x += alpha p, r -= alpha q, z = M^-1 r on the chunk, partials r.z and r.r.
+// No barrier: whichever thread completes a phase's last chunk sums the per-chunk
+// partials (in chunk order) and opens the next phase, so a thread descheduled by a busy
+// machine only delays the chunk it holds, never a whole phase. Results are
+// deterministic and independent of the thread count.
 //
 // The preconditioner M is block incomplete Cholesky: per chunk, the zero-fill
 // factorization (D + L) D^-1 (D + L)^T of A restricted to the chunk (couplings to other
