@@ -1,6 +1,7 @@
 #include "reconstruct/grid_operator.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "reconstruct/laplacian.h"
@@ -47,6 +48,78 @@ void GridOperator::set_weights(const float* row_weights, const float* pixel_weig
         m_data[i] = alpha2 * (pixel_weights ? pixel_weights[i] : 1.0f);
       }
   });
+  factor(threads);
+}
+
+double GridOperator::set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg,
+                                      float alpha, const float* user_rows, const float* user_pixels, int threads) {
+  DP_CHECK(alpha >= 0.0f, "alpha must be >= 0");
+  const int w = m_w, h = m_h;
+  DP_CHECK(b.size() == size_t(h) * size_t(w - 1) + size_t(w) * size_t(h - 1), "b size mismatch");
+  const size_t dy0 = size_t(h) * size_t(w - 1), n = pixels();
+  threads = resolve_threads(threads);
+  struct alignas(64) Sum {
+    double v = 0.0;
+  };
+  std::vector<Sum> sums(size_t(threads), Sum{});
+  // Raw weights 1 / (|e|_2 + reg) of every row, e its RGB residual (in double).
+  const auto raw = [reg](double e0, double e1, double e2) {
+    return 1.0 / (std::sqrt(e0 * e0 + e1 * e1 + e2 * e2) + reg);
+  };
+  run_team(threads, [&](int t) {
+    double s = 0.0;
+    for (int y = int(part_begin(size_t(h), threads, t)), y1 = int(part_begin(size_t(h), threads, t + 1)); y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        const Vec4 xi = image[i];
+        float wx = 0.0f, wy = 0.0f;
+        if (x + 1 < w) {
+          const Rgb& d = b[size_t(y) * size_t(w - 1) + size_t(x)];
+          const Vec4 xj = image[i + 1];
+          const double v = raw(double(xj[0]) - double(xi[0]) - double(d[0]),
+                               double(xj[1]) - double(xi[1]) - double(d[1]), double(xj[2]) - double(xi[2]) - double(d[2]));
+          wx = float(v);
+          s += v;
+        }
+        if (y + 1 < h) {
+          const Rgb& d = b[dy0 + i];
+          const Vec4 xj = image[i + size_t(w)];
+          const double v = raw(double(xj[0]) - double(xi[0]) - double(d[0]),
+                               double(xj[1]) - double(xi[1]) - double(d[1]), double(xj[2]) - double(xi[2]) - double(d[2]));
+          wy = float(v);
+          s += v;
+        }
+        const double a = double(alpha);
+        const double wp = raw(a * (double(xi[0]) - double(g[i][0])), a * (double(xi[1]) - double(g[i][1])),
+                              a * (double(xi[2]) - double(g[i][2])));
+        s += wp;
+        m_wx[i] = wx;
+        m_wy[i] = wy;
+        m_data[i] = float(wp);
+      }
+    sums[size_t(t)].v = s;
+  });
+  double total = 0.0;
+  for (const Sum& s : sums) total += s.v;
+  // Normalized to mean 1 over all rows (gradient and primal), then the user's weights.
+  const float scale = float(double(b.size() + n) / total);
+  const float alpha2 = alpha * alpha;
+  run_team(threads, [&](int t) {
+    for (int y = int(part_begin(size_t(h), threads, t)), y1 = int(part_begin(size_t(h), threads, t + 1)); y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        if (x + 1 < w) m_wx[i] *= scale * (user_rows ? user_rows[size_t(y) * size_t(w - 1) + size_t(x)] : 1.0f);
+        if (y + 1 < h) m_wy[i] *= scale * (user_rows ? user_rows[dy0 + i] : 1.0f);
+        m_data[i] = alpha2 * (m_data[i] * (scale * (user_pixels ? user_pixels[i] : 1.0f)));
+      }
+  });
+  factor(threads);
+  return total;
+}
+
+void GridOperator::factor(int threads) {
+  const int w = m_w;
+  threads = resolve_threads(threads);
   // Diagonal, then the block incomplete Cholesky pivots chunk by chunk: with L the
   // strictly lower part of the chunk's block, D_i = A_ii - sum_{j < i} A_ij^2 / D_j over
   // the (at most two) lower neighbours in the block (zero fill for the 5-point stencil).

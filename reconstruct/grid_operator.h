@@ -20,6 +20,14 @@ class GridOperator final : public ChunkedOperator {
   // row_weights in the kernel's row order (dx rows, then dy rows; nullptr = all ones),
   // pixel_weights (nullptr = all ones), alpha >= 0. Also factors the preconditioner.
   void set_weights(const float* row_weights, const float* pixel_weights, float alpha, int threads);
+  // One IRLS reweighting (solve.h, ALGORITHMS.md) at the image x: every dx, dy and
+  // primal row gets 1 / (|e|_2 + reg), e its RGB residual (alpha (x_i - g_i) for primal
+  // rows); the weights are normalized to mean 1 over all rows, multiplied by the user's
+  // row / pixel weights (nullptr = 1), and set as by set_weights(). Same values as
+  // computing them over the kernel's pairs, without the index arrays. Returns the sum of
+  // the raw weights.
+  double set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
+                          const float* user_rows, const float* user_pixels, int threads);
   // out = H^T W b + alpha^2 P g (sums in double).
   void rhs(const std::vector<Rgb>& b, const Vec4* g, Vec4* out, int threads) const;
 
@@ -37,6 +45,8 @@ class GridOperator final : public ChunkedOperator {
               Vec4d& rr) const override;
 
  private:
+  // Diagonal and block incomplete Cholesky factor from m_wx, m_wy, m_data.
+  void factor(int threads);
   // out[0..w) = A in for image row y; up / down are rows y-1 / y+1 of `in` (ignored at
   // the image border).
   void stencil_row(int y, const Vec4* up, const Vec4* mid, const Vec4* down, Vec4* out) const;

@@ -100,6 +100,7 @@ class Operator {
     else
       m_csr = std::make_unique<Laplacian>(k);
   }
+  GridOperator* grid() { return m_grid.get(); }
   const ChunkedOperator& op() const {
     if (m_grid) return *m_grid;
     return *m_csr;
@@ -236,7 +237,8 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
       l2_into(problem, in, g4, options, direct, options.irls_cg_iterations, options.irls_cg_tolerance, &A, x);
   result.cg_iterations += st.iterations;
 
-  std::vector<float> row_w(rows), pixel_w(n);
+  // Weights of the generic path (the grid operator keeps its own).
+  std::vector<float> row_w(A.grid() ? 0 : rows), pixel_w(A.grid() ? 0 : n);
   CgWorkspace workspace;
   const float alpha = problem.alpha;
   const auto& pairs = k.pairs();
@@ -247,42 +249,48 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
   for (int it = 1; it <= options.reweightings; ++it) {
     // Reference IRLS schedule (ALGORITHMS.md): reg = 0.05 * 0.5^(k-1), w = 1/(|e|_2 + reg).
     const double reg = 0.05 * std::pow(0.5, it - 1);
-    run_team(threads, [&](int t) {
-      double s = 0.0;
-      for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r) {
-        const PixelPair& p = pairs[r];
-        double e2 = 0.0;
-        for (size_t c = 0; c < 3; ++c) {
-          const double e = double(x[size_t(p.j)][c]) - double(x[size_t(p.i)][c]) - double(in.b[r][int(c)]);
-          e2 += e * e;
+    if (GridOperator* grid = A.grid()) {
+      // The same weights without the kernel's index arrays.
+      grid->set_irls_weights(x.data(), in.b, g4.data(), reg, alpha, in.row_w.empty() ? nullptr : in.row_w.data(),
+                             in.pixel_w.empty() ? nullptr : in.pixel_w.data(), threads);
+    } else {
+      run_team(threads, [&](int t) {
+        double s = 0.0;
+        for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r) {
+          const PixelPair& p = pairs[r];
+          double e2 = 0.0;
+          for (size_t c = 0; c < 3; ++c) {
+            const double e = double(x[size_t(p.j)][c]) - double(x[size_t(p.i)][c]) - double(in.b[r][int(c)]);
+            e2 += e * e;
+          }
+          const double w = 1.0 / (std::sqrt(e2) + reg);
+          row_w[r] = float(w);
+          s += w;
         }
-        const double w = 1.0 / (std::sqrt(e2) + reg);
-        row_w[r] = float(w);
-        s += w;
-      }
-      for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i) {
-        double e2 = 0.0;
-        for (size_t c = 0; c < 3; ++c) {
-          const double e = double(alpha) * (double(x[i][c]) - double(in.g[3 * i + c]));
-          e2 += e * e;
+        for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i) {
+          double e2 = 0.0;
+          for (size_t c = 0; c < 3; ++c) {
+            const double e = double(alpha) * (double(x[i][c]) - double(in.g[3 * i + c]));
+            e2 += e * e;
+          }
+          const double w = 1.0 / (std::sqrt(e2) + reg);
+          pixel_w[i] = float(w);
+          s += w;
         }
-        const double w = 1.0 / (std::sqrt(e2) + reg);
-        pixel_w[i] = float(w);
-        s += w;
-      }
-      sums[size_t(t)].v = s;
-    });
-    double total = 0.0;
-    for (const Sum& s : sums) total += s.v;
-    // Normalize to mean 1 over all rows (gradient and primal), then apply user weights.
-    const float scale = float(double(rows + n) / total);
-    run_team(threads, [&](int t) {
-      for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r)
-        row_w[r] *= scale * (in.row_w.empty() ? 1.0f : in.row_w[r]);
-      for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i)
-        pixel_w[i] *= scale * (in.pixel_w.empty() ? 1.0f : in.pixel_w[i]);
-    });
-    A.set_weights(row_w, pixel_w, alpha, threads);
+        sums[size_t(t)].v = s;
+      });
+      double total = 0.0;
+      for (const Sum& s : sums) total += s.v;
+      // Normalize to mean 1 over all rows (gradient and primal), then apply user weights.
+      const float scale = float(double(rows + n) / total);
+      run_team(threads, [&](int t) {
+        for (size_t r = part_begin(rows, threads, t), r1 = part_begin(rows, threads, t + 1); r < r1; ++r)
+          row_w[r] *= scale * (in.row_w.empty() ? 1.0f : in.row_w[r]);
+        for (size_t i = part_begin(n, threads, t), i1 = part_begin(n, threads, t + 1); i < i1; ++i)
+          pixel_w[i] *= scale * (in.pixel_w.empty() ? 1.0f : in.pixel_w[i]);
+      });
+      A.set_weights(row_w, pixel_w, alpha, threads);
+    }
     A.rhs(in.b, in.g, g4, rhs, threads);
     CgSettings s;
     s.max_iterations = options.irls_cg_iterations;

@@ -212,3 +212,48 @@ TEST_CASE("pcg gives bitwise identical results for 1 and 2 threads and with a re
     }
   }
 }
+
+TEST_CASE("GridOperator IRLS reweighting equals the weights computed over the kernel's pairs", "[unit]") {
+  core::Rng rng(17, 5);
+  const int w = 31, h = 53;
+  const Kernel k = Kernel::forward_differences(w, h);
+  const std::vector<Vec4> x = random_vec4(k.pixels(), rng), g = random_vec4(k.pixels(), rng);
+  std::vector<Rgb> b(k.rows());
+  for (auto& v : b) v = Rgb(rng.uniform() - 0.5f, rng.uniform(), -rng.uniform());
+  std::vector<float> user_rows(k.rows()), user_pixels(k.pixels());
+  for (float& v : user_rows) v = 0.5f + rng.uniform();
+  for (float& v : user_pixels) v = 0.5f + rng.uniform();
+  const double reg = 0.05 * std::pow(0.5, 3), alpha = double(0.2f);
+  // Reference: ALGORITHMS.md's IRLS weights over every pair and pixel, in double.
+  std::vector<double> rw(k.rows()), pw(k.pixels());
+  double total = 0.0;
+  for (size_t r = 0; r < k.rows(); ++r) {
+    const auto [i, j] = k.pairs()[r];
+    double e2 = 0.0;
+    for (int c = 0; c < 3; ++c) e2 += std::pow(double(x[size_t(j)][c]) - double(x[size_t(i)][c]) - double(b[r][c]), 2);
+    rw[r] = 1.0 / (std::sqrt(e2) + reg);
+    total += rw[r];
+  }
+  for (size_t i = 0; i < k.pixels(); ++i) {
+    double e2 = 0.0;
+    for (int c = 0; c < 3; ++c) e2 += std::pow(alpha * (double(x[i][c]) - double(g[i][c])), 2);
+    pw[i] = 1.0 / (std::sqrt(e2) + reg);
+    total += pw[i];
+  }
+  const double scale = double(k.rows() + k.pixels()) / total;
+  std::vector<float> rwf(k.rows()), pwf(k.pixels());
+  for (size_t r = 0; r < k.rows(); ++r) rwf[r] = float(rw[r] * scale * double(user_rows[r]));
+  for (size_t i = 0; i < k.pixels(); ++i) pwf[i] = float(pw[i] * scale * double(user_pixels[i]));
+  Laplacian ref(k);
+  ref.set_weights(rwf.data(), pwf.data(), float(alpha), 1);
+  GridOperator grid(w, h);
+  const double raw_total = grid.set_irls_weights(x.data(), b, g.data(), reg, float(alpha), user_rows.data(),
+                                                 user_pixels.data(), 2);
+  CHECK(std::abs(raw_total - total) < 1e-12 * total);
+  const std::vector<Vec4> v = random_vec4(k.pixels(), rng);
+  const std::vector<Vec4> a = apply_all(grid, v), e = apply_all(ref, v);
+  double scale_a = 0.0;
+  for (const Vec4& q : e) scale_a = std::max(scale_a, double(std::abs(q[0]) + std::abs(q[1]) + std::abs(q[2])));
+  CHECK(max_diff(a, e) < 1e-5 * scale_a);
+  CHECK(max_diff(precondition_all(grid, v), precondition_all(ref, v)) < 1e-5 * scale_a);
+}
