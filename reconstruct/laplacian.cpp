@@ -186,15 +186,28 @@ void Laplacian::precondition(size_t c, const Vec4* r, Vec4* z) const {
   const int64_t* lower_end = m_lower_end.data();
   const int64_t* inner_end = m_inner_end.data();
   const float* wt = m_weight.data();
+  // The entry of the adjacent pixel (i-1 forward, i+1 backward) comes last in its group
+  // when present; its value is kept in a register instead of being reloaded from the
+  // store just made, which would put a store-to-load forward on the dependency chain.
+  Vec4 prev = {};
   for (size_t i = lo; i < hi; ++i) {
+    int64_t end = lower_end[i];
+    float w_prev = 0.0f;
+    if (end > off[i] && size_t(nbr[end - 1]) + 1 == i) w_prev = wt[--end];
     Vec4 t = r[i];
-    for (int64_t e = off[i], end = lower_end[i]; e < end; ++e) t += wt[e] * z[nbr[e]];
-    z[i] = t * ip[i];
+    for (int64_t e = off[i]; e < end; ++e) t += wt[e] * z[nbr[e]];
+    prev = t * ip[i] + (w_prev * ip[i]) * prev;
+    z[i] = prev;
   }
+  prev = Vec4{};
   for (size_t i = hi; i-- > lo;) {
+    int64_t end = inner_end[i];
+    float w_prev = 0.0f;
+    if (end > lower_end[i] && size_t(nbr[end - 1]) == i + 1) w_prev = wt[--end];
     Vec4 s = {};
-    for (int64_t e = lower_end[i], end = inner_end[i]; e < end; ++e) s += wt[e] * z[nbr[e]];
-    z[i] += s * ip[i];
+    for (int64_t e = lower_end[i]; e < end; ++e) s += wt[e] * z[nbr[e]];
+    prev = (z[i] + s * ip[i]) + (w_prev * ip[i]) * prev;
+    z[i] = prev;
   }
 }
 
