@@ -178,6 +178,16 @@ void Laplacian::direction(size_t c, const Vec4* z, const Vec4* p_old, Vec4 beta,
 }
 
 void Laplacian::precondition(size_t c, const Vec4* r, Vec4* z) const {
+  substitute(c, nullptr, nullptr, nullptr, nullptr, nullptr, r, z, nullptr, nullptr);
+}
+
+void Laplacian::update(size_t c, Vec4 alpha, const Vec4* p, const Vec4* q, Vec4* x, Vec4* r, Vec4* z, Vec4d& rz,
+                       Vec4d& rr) const {
+  substitute(c, &alpha, p, q, x, r, r, z, &rz, &rr);
+}
+
+void Laplacian::substitute(size_t c, const Vec4* alpha, const Vec4* p, const Vec4* q, Vec4* x, Vec4* r_update,
+                           const Vec4* r, Vec4* z, Vec4d* rz, Vec4d* rr) const {
   // Solve (D + L) t = r, then (D + L^T) z = D t, within the chunk; A_ij = -w.
   const int64_t* off = m_offset.data();
   const int32_t* nbr = m_nbr.data();
@@ -194,12 +204,17 @@ void Laplacian::precondition(size_t c, const Vec4* r, Vec4* z) const {
     int64_t end = lower_end[i];
     float w_prev = 0.0f;
     if (end > off[i] && size_t(nbr[end - 1]) + 1 == i) w_prev = wt[--end];
+    if (alpha) {
+      x[i] += *alpha * p[i];
+      r_update[i] -= *alpha * q[i];  // r_update == r
+    }
     Vec4 t = r[i];
     for (int64_t e = off[i]; e < end; ++e) t += wt[e] * z[nbr[e]];
     prev = t * ip[i] + (w_prev * ip[i]) * prev;
     z[i] = prev;
   }
   prev = Vec4{};
+  Vec4d sum_rz, sum_rr;
   for (size_t i = hi; i-- > lo;) {
     int64_t end = inner_end[i];
     float w_prev = 0.0f;
@@ -208,6 +223,14 @@ void Laplacian::precondition(size_t c, const Vec4* r, Vec4* z) const {
     for (int64_t e = lower_end[i]; e < end; ++e) s += wt[e] * z[nbr[e]];
     prev = (z[i] + s * ip[i]) + (w_prev * ip[i]) * prev;
     z[i] = prev;
+    if (rz) {
+      accumulate(sum_rz, r[i] * prev);
+      accumulate(sum_rr, r[i] * r[i]);
+    }
+  }
+  if (rz) {
+    *rz += sum_rz;
+    *rr += sum_rr;
   }
 }
 

@@ -48,8 +48,16 @@ class Laplacian final : public ChunkedOperator {
   void direction(size_t c, const Vec4* z, const Vec4* p_old, Vec4 beta, Vec4* p_new, Vec4* q, Vec4d& pq,
                  Vec4* scratch) const override;
   void precondition(size_t c, const Vec4* r, Vec4* z) const override;
+  void update(size_t c, Vec4 alpha, const Vec4* p, const Vec4* q, Vec4* x, Vec4* r, Vec4* z, Vec4d& rz,
+              Vec4d& rr) const override;
 
  private:
+  // z = M^-1 r on chunk c (block IC substitutions). With alpha != nullptr, first
+  // x += alpha p and r -= alpha q pixel by pixel in the forward pass (r_update is then r
+  // itself); with rz != nullptr, r.z and r.r are summed in the backward pass.
+  void substitute(size_t c, const Vec4* alpha, const Vec4* p, const Vec4* q, Vec4* x, Vec4* r_update, const Vec4* r,
+                  Vec4* z, Vec4d* rz, Vec4d* rr) const;
+
   const Kernel& m_kernel;
   // CSR row starts, pixels()+1 entries. A pixel's entries are grouped: neighbours in its
   // chunk before it (ascending), in its chunk after it (descending), then outside its
