@@ -121,6 +121,19 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
       ++counters.shifts_outside;
     }
     Rgbd primal_i = Rgbd::Zero(), primal_j = Rgbd::Zero(), grad = Rgbd::Zero();
+    // One concrete path (NEE or BSDF) of the pair, weighted by the symmetric MIS weight:
+    // both pixels' primal estimates and the pair's gradient f_j(Tx)|T'| - f_i(x) (a failed
+    // shift leaves only the base term).
+    auto accumulate = [&](const Rgbd& fb, const Rgbd& fo, double wgt, bool has_offset) {
+      if ((fb == 0.0).all() && (fo == 0.0).all()) return;
+      primal_i += wgt * fb;
+      if (has_offset) {
+        primal_j += wgt * fo;
+        grad += wgt * (fo - fb);
+      } else if (inside) {
+        grad -= wgt * fb;
+      }
+    };
     // NEE paths (x_0..x_k, light sample).
     for (int k = 1; k < n; ++k) {
       const pathspace::LightSample& bl = base.nee[size_t(k)];
@@ -137,15 +150,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
         d = ol.visible ? ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
         if (ol.visible) fo = beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
       }
-      if ((fb == 0.0).all() && (fo == 0.0).all()) continue;
-      const double wgt = gradients::symmetric_power_weight(b_other, c, d);
-      primal_i += wgt * fb;
-      if (has_offset) {
-        primal_j += wgt * fo;
-        grad += wgt * (fo - fb);
-      } else if (inside) {
-        grad -= wgt * fb;
-      }
+      accumulate(fb, fo, gradients::symmetric_power_weight(b_other, c, d), has_offset);
     }
     // BSDF paths (x_0..x_k), k >= 2, whose last vertex may emit.
     for (int k = 2; k < n; ++k) {
@@ -166,15 +171,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
                 : 0.0;
         fo = beta_o[size_t(k)] * ov.emission.cast<double>();
       }
-      if ((fb == 0.0).all() && (fo == 0.0).all()) continue;
-      const double wgt = gradients::symmetric_power_weight(b_other, c, d);
-      primal_i += wgt * fb;
-      if (has_offset) {
-        primal_j += wgt * fo;
-        grad += wgt * (fo - fb);
-      } else if (inside) {
-        grad -= wgt * fb;
-      }
+      accumulate(fb, fo, gradients::symmetric_power_weight(b_other, c, d), has_offset);
     }
     if (!primal_i.isFinite().all() || !primal_j.isFinite().all() || !grad.isFinite().all()) {
       ++counters.nan_dropped;  // counted and dropped, never splatted
