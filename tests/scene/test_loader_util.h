@@ -1,6 +1,7 @@
 // Temporary folder for loader tests: files written into it are removed with it.
 #pragma once
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -30,3 +31,24 @@ class TempDir {
  private:
   std::filesystem::path m_dir;
 };
+
+// Loads `text` with `load(text, path)` and requires a typed error E whose one-line
+// message starts with "path:line: " and contains `phrase` (shared by the YAML and
+// Mitsuba front-end tests).
+template <typename E, typename Load>
+void require_load_error(Load load, const std::string& text, int line, const std::string& phrase,
+                        const std::string& path) {
+  INFO(text);
+  try {
+    load(text, path);
+  } catch (const E& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(e.line() == line);
+    CHECK_THAT(what, Catch::Matchers::Contains(path + ":" + std::to_string(line) + ": "));
+    CHECK_THAT(what, Catch::Matchers::Contains(phrase));
+    CHECK(what.find('\n') == std::string::npos);
+    return;
+  }
+  FAIL("no error was thrown");
+}

@@ -41,19 +41,8 @@ std::unique_ptr<Scene> load(const std::string& body, const MitsubaOptions& opt =
 
 template <typename E>
 void require_error(const std::string& xml, int line, const std::string& phrase, const std::string& path = kPath) {
-  INFO(xml);
-  try {
-    load_scene_mitsuba_string(xml, path);
-  } catch (const E& e) {
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(e.line() == line);
-    CHECK_THAT(what, Contains(path + ":" + std::to_string(line) + ": "));
-    CHECK_THAT(what, Contains(phrase));
-    CHECK(what.find('\n') == std::string::npos);
-    return;
-  }
-  FAIL("no error was thrown");
+  require_load_error<E>([](const std::string& t, const std::string& p) { return load_scene_mitsuba_string(t, p); }, xml, line, phrase,
+                        path);
 }
 
 const TriangleMesh& mesh_at(const Scene& s, size_t i) {

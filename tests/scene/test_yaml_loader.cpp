@@ -31,19 +31,8 @@ const std::string kWhite =
 
 template <typename E>
 void require_error(const std::string& yaml, int line, const std::string& phrase, const std::string& path = kPath) {
-  INFO(yaml);
-  try {
-    load_scene_yaml_string(yaml, path);
-  } catch (const E& e) {
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(e.line() == line);
-    CHECK_THAT(what, Contains(path + ":" + std::to_string(line) + ": "));
-    CHECK_THAT(what, Contains(phrase));
-    CHECK(what.find('\n') == std::string::npos);
-    return;
-  }
-  FAIL("no error was thrown");
+  require_load_error<E>([](const std::string& t, const std::string& p) { return load_scene_yaml_string(t, p); }, yaml, line, phrase,
+                        path);
 }
 
 std::unique_ptr<Scene> load(const std::string& yaml, const std::string& path = kPath) {
