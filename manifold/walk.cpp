@@ -15,6 +15,14 @@ double walk_scale(const Chain& c, const Vec3d& target) {
   return std::max(target.cwiseAbs().maxCoeff(), (target - c.v[size_t(c.n() - 1)].p()).norm());
 }
 
+// |x_n - target| in the end's tangent plane: the target (a float hit point) may lie off
+// the end's surface by round-off, a distance no walk can reduce.
+double end_distance(const Chain& c, const Vec3d& target) {
+  const ChainVertex& end = c.v[size_t(c.n())];
+  const Vec3d d = target - end.p();
+  return (d - d.dot(end.f.ng) * end.f.ng).norm();
+}
+
 }  // namespace
 
 // Inverse of the constraint of constraints.h.
@@ -103,7 +111,7 @@ WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& targ
   if (st != WalkStatus::ok) return finish(st);
   const int n = chain.n();
   const double scale = walk_scale(r.chain, target);
-  r.distance = (r.chain.v[size_t(n)].p() - target).norm();
+  r.distance = end_distance(r.chain, target);
   double step = 1.0;
   Chain trial;
   std::vector<Mat2d> T;
@@ -127,7 +135,7 @@ WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& targ
     ++r.iterations;
     st = retrace(scene, r.chain, x1_new, trial);
     if (stats) ++stats->traces;
-    const double dist = st == WalkStatus::ok ? (trial.v[size_t(n)].p() - target).norm() : 0.0;
+    const double dist = st == WalkStatus::ok ? end_distance(trial, target) : 0.0;
     if (st == WalkStatus::ok && dist < r.distance) {
       std::swap(r.chain, trial);
       r.distance = dist;

@@ -7,7 +7,8 @@
 // object than the chain vertex, if refraction fails (TIR), or if the distance to the
 // target grew; after an accepted step the step size doubles (at most 1).
 //
-// Convergence: |x_n - target| < tolerance * scale, scale = max(max_k |target_k|,
+// Convergence: |x_n - target| < tolerance * scale (the distance in x_n's tangent plane:
+// a float target off the surface by round-off stays reachable), scale = max(max_k |target_k|,
 // |target - x_{n-1}|) (ALGORITHMS.md: distance / max|target| < 1e-7; the segment
 // length guards targets near the origin). Iterations count every re-trace attempt.
 #pragma once
@@ -30,7 +31,7 @@ struct WalkResult {
   WalkStatus status = WalkStatus::invalid_input;
   Chain chain;         // the walked chain (valid when status == ok)
   int iterations = 0;  // re-trace attempts
-  double distance = 0; // final |x_n - target|
+  double distance = 0; // final |x_n - target| in x_n's tangent plane
   bool ok() const { return status == WalkStatus::ok; }
 };
 
