@@ -5,7 +5,7 @@
 // the reference, and the time per sample of each (overhead ratio = G-PT / PT, rendering
 // only). The resolution is reduced through the scene's camera (a YAML variant in memory).
 // Usage: bench_gpt SCENE.yaml... [--res N] [--ref-seconds S] [--seconds S] [--threads T]
-//                  [--shifts reconnection,manifold] [--region X0 Y0 X1 Y1] [--diagnose N] [--seed S]
+//                  [--shifts reconnection,manifold[:always]] [--region X0 Y0 X1 Y1] [--diagnose N] [--seed S]
 //                  [--gradvar RUNS SPP]
 // (--seed offsets the seeds of the equal-time runs; every shift row of a scene uses the
 // same G-PT seed, so its base paths are the same and the rows differ by the shift.)
@@ -42,10 +42,18 @@ const core::Image& layer(const integrators::RenderResult& r, const std::string& 
   return r.layers[0].image;
 }
 
+// A --shifts item: a shift name, optionally ":" and the manifold walk strategy
+// (manifold:always, manifold:fallback; gradients/manifold_shift.h).
+void set_shift(integrators::Settings& settings, const std::string& item) {
+  const auto colon = item.find(':');
+  settings.set("shift", item.substr(0, colon));
+  if (colon != std::string::npos) settings.set("manifold_walk", item.substr(colon + 1));
+}
+
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, double seconds, int threads,
                                  uint64_t seed, const std::string& shift = "") {
   integrators::Settings settings;
-  if (!shift.empty()) settings.set("shift", shift);
+  if (!shift.empty()) set_shift(settings, shift);
   auto in = integrators::make_integrator(name, settings);
   integrators::RenderOptions opt;
   opt.time_budget = seconds;
@@ -188,7 +196,7 @@ void gradient_variance(const scene::Scene& s, const std::string& path_name, cons
     std::vector<std::vector<double>> sum(4, std::vector<double>(size_t(w * h), 0.0)), sq = sum;
     for (int r = 0; r < runs; ++r) {
       integrators::Settings settings;
-      settings.set("shift", shift);
+      set_shift(settings, shift);
       auto in = integrators::make_integrator("gpt", settings);
       integrators::RenderOptions opt;
       opt.spp = spp;

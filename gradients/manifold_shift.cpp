@@ -66,10 +66,14 @@ WalkStatus manifold_shift_jacobian(const Chain& base, const Chain& offset, doubl
 }
 
 int ManifoldShift::chain_end(const Path& base, int k, const ShiftResult& out) const {
+  if (out.reconnected >= 0 || out.path.size() != k + 1) return -1;
+  return chain_end(base, k, out.path[k]);
+}
+
+int ManifoldShift::chain_end(const Path& base, int k, const Vertex& ob) const {
   const int n = base.size();
-  if (k < 1 || k + 2 >= n || out.reconnected >= 0 || out.path.size() != k + 1) return -1;
+  if (k < 1 || k + 2 >= n) return -1;
   const Vertex& b = base[k];
-  const Vertex& ob = out.path[k];
   if (b.kind != VertexKind::surface || ob.kind != VertexKind::surface || !b.connectable || !ob.connectable ||
       b.delta_lobe() || !ob.hit.bsdf || b.hit.shape != ob.hit.shape)
     return -1;
@@ -79,6 +83,22 @@ int ManifoldShift::chain_end(const Path& base, int k, const ShiftResult& out) co
   if (m == k + 1 || m >= n || base[m].kind != VertexKind::surface) return -1;
   if (m_emitter_chains_only && !base[m].hit.emitter) return -1;
   return m;
+}
+
+bool ManifoldShift::copy_chain(const Path& base, int k, int m, ShiftResult& r) const {
+  for (int j = k; j < m; ++j)
+    if (ReconnectionShift::step(base, j, r) != ShiftStatus::ok) return false;
+  return true;
+}
+
+bool ManifoldShift::same_shapes(const Path& base, const ShiftResult& r, int k, int m) {
+  if (m >= base.size() || r.path.size() != m + 1) return false;
+  for (int j = k + 1; j <= m; ++j) {
+    const Vertex &a = base[j], &o = r.path[j];
+    if (a.kind != o.kind || a.connectable != o.connectable || (a.kind == VertexKind::surface && a.hit.shape != o.hit.shape))
+      return false;
+  }
+  return true;
 }
 
 std::optional<Chain> ManifoldShift::make_chain(const Path& base, int k, int m) const {
@@ -107,9 +127,53 @@ std::optional<Chain> ManifoldShift::make_chain(const Path& base, int k, int m) c
 }
 
 ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const {
-  const int m = chain_end(base, k, out);
-  if (m < 0) return ReconnectionShift::step(base, k, out);
-  return walk_chain(base, k, m, out);
+  // A chain start (header, "Strategy"): the offset's x'_k made, not reconnected, base x_k
+  // connectable with a sampled (non-delta) direction toward a vertex that is not.
+  const int n = base.size();
+  const bool chain_start = k >= 1 && k + 1 < n && out.reconnected < 0 && out.path.size() == k + 1 &&
+                           base[k].connectable && !base[k].delta_lobe() && !base[k + 1].connectable &&
+                           out.path[k].connectable;
+  if (!chain_start) return ReconnectionShift::step(base, k, out);
+  const int eligible = chain_end(base, k, out);
+  if (eligible >= 0 && !m_walk_as_fallback) return walk_chain(base, k, eligible, out);
+  int m = k + 1;
+  while (m < n && !base[m].connectable) ++m;
+  thread_local ShiftResult copy;
+  copy = out;
+  const bool done = copy_chain(base, k, std::min(m, n - 1), copy);
+  const bool stays = done && same_shapes(base, copy, k, m);
+  if (!stays && m_walk_as_fallback) {
+    if (eligible >= 0) {
+      thread_local ShiftResult walked;
+      walked = out;
+      if (walk_chain(base, k, eligible, walked) == ShiftStatus::ok) {
+        std::swap(out, walked);
+        return ShiftStatus::ok;
+      }
+      copy.walk_status = walked.walk_status;  // the copy stands in for the failed walk
+      copy.walk_iterations = walked.walk_iterations;
+      copy.walk_traces = walked.walk_traces;
+      out.walk_status = walked.walk_status;
+      out.walk_traces = walked.walk_traces;
+    }
+    // The copy is the offset only if the reverse shift (from the copy) would not walk.
+    if (done && reverse_walks(copy.path, k, base)) return ShiftStatus::not_invertible;
+  } else if (!stays && eligible < 0 && done && chain_end(copy.path, k, base[k]) >= 0) {
+    return ShiftStatus::not_invertible;  // walk always: the reverse shift would walk the copy's chain
+  }
+  if (!done) return ReconnectionShift::step(base, k, out);  // the shift loop fails where the copy did
+  std::swap(out, copy);
+  return ShiftStatus::ok;
+}
+
+bool ManifoldShift::reverse_walks(const Path& offset, int k, const Path& base) const {
+  const int m = chain_end(offset, k, base[k]);
+  if (m < 0) return false;
+  thread_local ShiftResult r;
+  r.reset(offset.size());
+  r.path.raster = base.raster;
+  for (int j = 0; j <= k; ++j) r.path.append(base[j]);
+  return walk_chain(offset, k, m, r) == ShiftStatus::ok;
 }
 
 WalkStatus ManifoldShift::solve(const Path& path, int k, int m, const Vec3d& target, manifold::Chain& exact,
@@ -206,6 +270,18 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
   if (st != WalkStatus::ok) {
     out.walk_status = int(WalkStatus::not_reversible);
     return ShiftStatus::not_invertible;
+  }
+  if (m_walk_as_fallback) {
+    // The reverse shift walks only if its own copy (the offset's direction at b' copied
+    // to b) does not stay on the chain's shapes.
+    thread_local ShiftResult back_copy;
+    back_copy.reset(o.size());
+    back_copy.path.raster = base.raster;
+    for (int j = 0; j <= k; ++j) back_copy.path.append(base[j]);
+    if (copy_chain(o, k, m, back_copy) && same_shapes(o, back_copy, k, m)) {
+      out.walk_status = int(WalkStatus::not_reversible);
+      return ShiftStatus::not_invertible;
+    }
   }
   out.jacobian[size_t(k)] = J;
   out.reconnected = m;

@@ -33,6 +33,20 @@
 // step is exactly ReconnectionShift's (glossy vertices in a chain, chains escaping to the
 // environment or cut off by the walk's length keep the half-vector copy).
 //
+// Strategy (each rule depends only on facts the reverse shift sees the same way, so
+// T^-1(T(x)) = x): at a chain start k (b, b' connectable, x_{k+1} not, not reconnected)
+// let m be the base's next connectable vertex and C the reconnection shift's half-vector
+// copy of x'_{k+1} .. x'_m; "C stays" if it succeeds and lands on the base's shapes.
+//  * eligible chain, walk_as_fallback: C where C stays; else the walk, accepted only if
+//    the copy of the walked offset back to b does not stay (else the reverse shift would
+//    copy, not walk). The copy keeps the direction at b, so the pair's ratio is ~1 where
+//    the offset still reaches the light; the walk keeps the light point c, whose ratio
+//    G(b'<->c)/G(b<->c) is the caustic of a point light and spreads near its folds
+//    (bench/RESULTS.md): the walk replaces only copies that miss.
+//  * eligible chain, !walk_as_fallback: the walk.
+//  * chain not eligible: C, except that if C's own chain is eligible (the copy drifted
+//    onto an emitter) the reverse shift would walk: not_invertible.
+//
 // Failures: the walk's failure (manifold::WalkStatus, counted by cause in the result)
 // maps to `occluded` for miss / different_object, else `not_invertible` (no offset chain
 // found); a float re-trace of the walked chain from b' that hits another surface is
@@ -58,6 +72,9 @@ struct ManifoldShiftOptions {
   // cornell_specular.yaml (bench_gpt --diagnose, bench/RESULTS.md). A per-shape
   // property, so the choice stays symmetric.
   bool emitter_chains_only = true;
+  // Walk a chain only where the half-vector copy of the whole chain does not stay on the
+  // base's shapes (false: walk every eligible chain). See "Strategy" above.
+  bool walk_as_fallback = true;
 };
 
 class ManifoldShift final : public ReconnectionShift {
@@ -65,13 +82,16 @@ class ManifoldShift final : public ReconnectionShift {
   ManifoldShift(const scene::Scene& scene, const ManifoldShiftOptions& options)
       : ReconnectionShift(scene, options.reconnection),
         m_walk(options.walk),
-        m_emitter_chains_only(options.emitter_chains_only) {}
+        m_emitter_chains_only(options.emitter_chains_only),
+        m_walk_as_fallback(options.walk_as_fallback) {}
   std::string name() const override { return "manifold"; }
   const manifold::WalkSettings& walk_settings() const { return m_walk; }
 
   // Index m of the chain's end c if the walk strategy applies at base vertex k (offset
   // prefix x'_0..x'_k in out.path), else -1.
   int chain_end(const pathspace::Path& base, int k, const ShiftResult& out) const;
+  // The same test with offset vertex x'_k = ob (not yet reconnected).
+  int chain_end(const pathspace::Path& base, int k, const pathspace::Vertex& ob) const;
   // The chain x_m (pinned), x_{m-1} .. x_{k+1}, x_k (end) of a base path, in double;
   // nullopt if a vertex has no valid local frame.
   std::optional<manifold::Chain> make_chain(const pathspace::Path& base, int k, int m) const;
@@ -81,12 +101,22 @@ class ManifoldShift final : public ReconnectionShift {
 
  private:
   ShiftStatus walk_chain(const pathspace::Path& base, int k, int m, ShiftResult& out) const;
+  // The reconnection shift's steps k .. m-1 (the half-vector copy through the chain) into
+  // r, whose offset prefix ends at x'_k; true iff every step succeeded.
+  bool copy_chain(const pathspace::Path& base, int k, int m, ShiftResult& r) const;
+  // The copy reached x'_m and x'_{k+1} .. x'_m lie on the base's shapes (connectable
+  // exactly where the base is): the reverse shift's copy retraces the same structure.
+  static bool same_shapes(const pathspace::Path& base, const ShiftResult& r, int k, int m);
+  // Would the reverse shift of `offset` (a copy whose chain does not stay on base's
+  // shapes), with offset prefix base[0..k], walk its chain successfully?
+  bool reverse_walks(const pathspace::Path& offset, int k, const pathspace::Path& base) const;
   // Re-traces the chain x_k .. x_m of `path` in double from x_k and walks its end to
   // `target` (c pinned): `exact` is the re-traced chain, `w` the walk.
   manifold::WalkStatus solve(const pathspace::Path& path, int k, int m, const Vec3d& target, manifold::Chain& exact,
                              manifold::WalkResult& w, manifold::WalkStats& ws) const;
   manifold::WalkSettings m_walk;
   bool m_emitter_chains_only;
+  bool m_walk_as_fallback;
 };
 
 // |d w'_b' / d w_b| of two chains pinned at the same c (see header): `base` ends at b,

@@ -29,6 +29,10 @@ GptSettings GptSettings::read(Settings& s) {
                                    "shift=manifold: which specular chains are walked -- emitter (chains ending on an "
                                    "emitter: caustics) or all (every chain ending on a connectable vertex)",
                                    {"emitter", "all"});
+  g.manifold_walk = s.get_string("manifold_walk", g.manifold_walk,
+                                 "shift=manifold: fallback (walk a chain only where the half-vector copy leaves "
+                                 "the base's shapes, e.g. misses the light) or always (walk every such chain)",
+                                 {"fallback", "always"});
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (!(g.shift_threshold >= 0.0f)) throw ValueError("setting 'shift_threshold' must be >= 0", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");

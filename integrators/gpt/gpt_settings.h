@@ -17,6 +17,7 @@ struct GptSettings {
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
   std::string shift = "reconnection";  // reconnection (Kettunen 2015) | manifold (gradients/manifold_shift.h)
   std::string manifold_chains = "emitter";  // shift=manifold: walk chains ending on an emitter | all
+  std::string manifold_walk = "fallback";   // shift=manifold: walk where the copy misses | always
 
   static GptSettings read(Settings& s);
 };

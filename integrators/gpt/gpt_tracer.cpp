@@ -39,7 +39,8 @@ std::unique_ptr<gradients::Shift> make_shift(const scene::Scene& scene, const Gp
                                                scene.caps().has_glossy || scene.caps().has_specular};
   if (settings.shift == "manifold")
     return std::make_unique<gradients::ManifoldShift>(
-        scene, gradients::ManifoldShiftOptions{ro, {}, settings.manifold_chains == "emitter"});
+        scene, gradients::ManifoldShiftOptions{ro, {}, settings.manifold_chains == "emitter",
+                                               settings.manifold_walk == "fallback"});
   return std::make_unique<gradients::ReconnectionShift>(scene, ro);
 }
 }  // namespace

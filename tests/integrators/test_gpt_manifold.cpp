@@ -1,6 +1,7 @@
 // G-PT with `shift=manifold` (gradients/manifold_shift.h):
 // (1) unbiasedness against PT on a small lit box with a mirror and a glass sphere
-//     (caustics through both; every chain walked, manifold_chains=all): per-block Welch t-tests of the gradients, Sidak-corrected,
+//     (caustics through both; chains ending anywhere, manifold_chains=all, walked where
+//     the half-vector copy leaves them -- the default manifold_walk): per-block Welch t-tests of the gradients, Sidak-corrected,
 //     thresholds from the sample variances of independent renders (fixed seeds); x2 and
 //     x0.5 splat errors must be detected; the L2 mean matches PT's; walks did happen;
 //     the same with the default (chains ending on the light) at Cornell-box scale on
@@ -9,7 +10,8 @@
 // (2) a furnace with a perfect mirror ball inside the diffuse sphere (albedo 0.5,
 //     emission 0.5: radiance 1 everywhere, also seen through the mirror): the L2 mean
 //     equals 1 and every gradient block's expectation is 0 (t-tests), with a 1% offset
-//     of the target detected, no NaN drops, and manifold walks through the mirror.
+//     of the target detected, no NaN drops, and manifold walks through the mirror
+//     (manifold_walk=always: in a furnace every copy reaches the emitter).
 #include <catch2/catch.hpp>
 #include <cstdio>
 
@@ -28,12 +30,17 @@ using namespace dp::test;
 namespace {
 const std::vector<std::pair<std::string, std::string>> kManifold = {{"shift", "manifold"}};
 const std::vector<std::pair<std::string, std::string>> kManifoldAll = {{"shift", "manifold"}, {"manifold_chains", "all"}};
+// Walk every chain: in a furnace every half-vector copy reaches the emitter, so the
+// default (walk where the copy misses) would hardly walk.
+const std::vector<std::pair<std::string, std::string>> kManifoldAlways = {{"shift", "manifold"},
+                                                                          {"manifold_walk", "always"}};
 
 integrators::RenderResult render_once(const scene::Scene& s, const std::string& integrator, int spp, uint64_t seed,
-                                      int max_depth = 5, bool all_chains = false) {
+                                      int max_depth = 5, bool all_chains = false, bool walk_always = false) {
   integrators::Settings settings;
   if (integrator == "gpt") settings.set("shift", "manifold");
   if (all_chains) settings.set("manifold_chains", "all");
+  if (walk_always) settings.set("manifold_walk", "always");
   auto in = integrators::make_integrator(integrator, settings);
   integrators::RenderOptions opt;
   opt.spp = spp;
@@ -98,10 +105,10 @@ TEST_CASE("G-PT with the manifold shift: gradients and L2 mean agree with PT (mi
 TEST_CASE("G-PT with the manifold shift in a furnace with a mirror ball: L2 = 1, gradients 0", "[stat]") {
   const auto s = mirror_furnace(kRes);
   constexpr int kDepth = 64;  // truncation bias 0.5^64 (Russian roulette after 5 segments)
-  const auto probe = render_once(*s, "gpt", 2, 77, kDepth);
+  const auto probe = render_once(*s, "gpt", 2, 77, kDepth, false, true);
   const int64_t walks = probe.stats.get("gpt.manifold.converged");
   REQUIRE(probe.stats.get("gpt.nan_dropped") == 0);
-  const Blocks g = stats(*s, "gpt", 32, 5000, kManifold, kDepth);
+  const Blocks g = stats(*s, "gpt", 32, 5000, kManifoldAlways, kDepth);
   const int tests = int(g.grad.size());
   // One-sample t-tests (Welch against a zero-variance constant sample).
   const std::vector<double> zeros(kRuns, 0.0), ones(kRuns, 1.0), ones_off(kRuns, 1.01);
