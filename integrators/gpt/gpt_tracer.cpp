@@ -25,6 +25,7 @@ void GptCounters::flush(core::Stats& stats) const {
     stats.add("gpt.shift.fail." + cause, fail[size_t(i)]);
     stats.add("gpt.shift.nee_fail." + cause, nee_fail[size_t(i)]);
   }
+  stats.add("gpt.shift.nee_base_zero_density", nee_base_zero);
   for (int i = 0; i < gradients::kStepKindCount; ++i) {
     const std::string kind = gradients::to_string(gradients::StepKind(i));
     stats.add("gpt.step." + kind + ".attempted", attempted[size_t(i)]);
@@ -51,7 +52,8 @@ GptTracer::GptTracer(const scene::Scene& scene, const GptSettings& settings, int
       m_builder(scene, pathspace::WalkOptions{max_depth, settings.rr_depth, settings.nee, settings.shift_threshold}),
       m_shift(make_shift(scene, settings)) {}
 
-void GptTracer::count(const ShiftResult& r, int n, GptCounters& c) const {
+void GptTracer::count(const Path& base, const ShiftResult& r, GptCounters& c) const {
+  const int n = base.size();
   ++c.shifts;
   if (r.alive == n) ++c.shifts_full;
   else ++c.fail[size_t(r.status)];
@@ -67,6 +69,7 @@ void GptTracer::count(const ShiftResult& r, int n, GptCounters& c) const {
     if (r.nee_step[size_t(k)] == gradients::StepKind::none && r.nee_status[size_t(k)] == ShiftStatus::ok) continue;
     ++c.attempted[size_t(r.nee_step[size_t(k)])];
     if (r.nee_status[size_t(k)] == ShiftStatus::ok) ++c.succeeded[size_t(r.nee_step[size_t(k)])];
+    else if (!(base.nee[size_t(k)].pdf > 0.0)) ++c.nee_base_zero;  // e.g. the back of the light: no shift needed
     else ++c.nee_fail[size_t(r.nee_status[size_t(k)])];
   }
 }
@@ -105,7 +108,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
     int alive = 0;
     if (inside) {
       m_shift->shift(base, Vec2(float(kDx[nb]), float(kDy[nb])), res);
-      count(res, n, counters);
+      count(base, res, counters);
       alive = res.alive;
       // Offset throughput relative to the base density, and pdf ratios p_j(T x)|T'| / p_i(x)
       // per prefix (Kettunen 2015, Sec. 5.3: ratios in double, RR follows the base).

@@ -30,6 +30,7 @@ struct GptCounters {
   std::array<int64_t, gradients::kShiftStatusCount> fail{};      // walk failures by cause
   std::array<int64_t, gradients::kStepKindCount> attempted{}, succeeded{};  // per strategy
   std::array<int64_t, gradients::kShiftStatusCount> nee_fail{};
+  int64_t nee_base_zero = 0;  // base light samples of zero density (not shift failures)
   manifold::WalkStats walks;  // manifold shift: walks by outcome ("gpt.manifold.*")
   void flush(core::Stats& stats) const;
 };
@@ -44,7 +45,7 @@ class GptTracer {
   const pathspace::PathBuilder& builder() const { return m_builder; }
 
  private:
-  void count(const gradients::ShiftResult& r, int n, GptCounters& c) const;
+  void count(const pathspace::Path& base, const gradients::ShiftResult& r, GptCounters& c) const;
   const scene::Scene& m_scene;
   GptSettings m_settings;
   pathspace::PathBuilder m_builder;
