@@ -98,12 +98,17 @@ Metric parse_metric(const Ctx& ctx, const YAML::Node& node) {
   YAML::Node name_node;
   name_node.reset(node);
   if (node.IsMap()) {
-    yamlx::check_keys(ctx, node, {"metric", "discard"}, "metric");
+    yamlx::check_keys(ctx, node, {"metric", "discard", "crop"}, "metric");
     name_node.reset(yamlx::require(ctx, node, "metric", "metric"));
     if (node["discard"].IsDefined()) {
       const long long d = yamlx::get_integer(ctx, node["discard"], "discard");
       if (d < 0) yamlx::value_error(ctx, node["discard"], "'discard' must be >= 0");
       m.discard = size_t(d);
+    }
+    if (node["crop"].IsDefined()) {
+      const long long i = yamlx::get_integer(ctx, node["crop"], "crop");
+      if (i < 0 || i > 1'000'000) yamlx::value_error(ctx, node["crop"], "'crop' must be an index into 'crops' (0, 1, ...)");
+      m.crop = int(i);
     }
   }
   m.name = yamlx::get_string(ctx, name_node, "metric");
@@ -168,6 +173,11 @@ ExperimentConfig parse_root(const Ctx& ctx, const YAML::Node& root) {
   }
   if (const YAML::Node cr = root["crops"]; cr.IsDefined())
     for (const auto& n : yamlx::get_list(ctx, cr, "crops")) c.crops.push_back(parse_crop(ctx, n));
+  if (const YAML::Node m = root["metrics"]; m.IsDefined())
+    for (size_t i = 0; i < c.metrics.size(); ++i)
+      if (c.metrics[i].crop >= int(c.crops.size()))
+        yamlx::value_error(ctx, m[i]["crop"], "metric crop " + std::to_string(c.metrics[i].crop) + " does not exist (" +
+                                                  std::to_string(c.crops.size()) + " crops listed)");
   if (const YAML::Node o = root["output"]; o.IsDefined())
     c.output = yamlx::resolve_path(ctx, yamlx::get_string(ctx, o, "output"));
   else
@@ -195,7 +205,10 @@ ExperimentConfig parse_node(const std::string& text, const std::string& path) {
 }
 }  // namespace
 
-std::string Metric::column() const { return discard > 0 ? name + "_discard" + std::to_string(discard) : name; }
+std::string Metric::column() const {
+  std::string c = discard > 0 ? name + "_discard" + std::to_string(discard) : name;
+  return crop >= 0 ? c + "_crop" + std::to_string(crop) : c;
+}
 
 std::string ExperimentConfig::budget_text(double b) const {
   return format_number(b) + (budget_kind == BudgetKind::time ? " s" : " spp");

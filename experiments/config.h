@@ -33,7 +33,9 @@ enum class BudgetKind { time, spp };
 struct Metric {
   std::string name;  // relmse | mse | mape
   size_t discard = 0;
-  // CSV column: "relmse", or "relmse_discard10" when pixels are discarded.
+  int crop = -1;  // index into Config::crops: scored on that region only; -1: whole image
+  // CSV column: "relmse", "relmse_discard10" when pixels are discarded, "relmse_crop0"
+  // on crop 0 (both suffixes may combine).
   std::string column() const;
 };
 

@@ -255,7 +255,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
           if (l.name == p.layer) img = &l.image;
         if (!img) throw IoError("layer '" + p.layer + "' missing; delete the point's .done file to re-render it", p.exr_path);
         if (!img->same_size(ref.image)) throw ValueError("image size differs from the reference", p.exr_path);
-        for (const auto& m : config.metrics) p.metrics.push_back(evaluate_metric(m, *img, ref.image));
+        for (const auto& m : config.metrics) p.metrics.push_back(evaluate_metric(m, *img, ref.image, config.crops));
         if (!p.skipped && !options.render.quiet) {
           std::string msg = "  " + run.name + ": " + format_duration(p.wall_time) + ", " + std::to_string(p.spp) + " spp";
           for (size_t m = 0; m < config.metrics.size(); ++m) {

@@ -18,7 +18,15 @@ size_t scored_layer(const std::vector<core::NamedLayer>& layers, const std::stri
   return 0;
 }
 
-double evaluate_metric(const Metric& metric, const core::Image& image, const core::Image& reference) {
+double evaluate_metric(const Metric& metric, const core::Image& image, const core::Image& reference,
+                       const std::vector<Crop>& crops) {
+  if (metric.crop >= 0) {
+    DP_CHECK(size_t(metric.crop) < crops.size(), "metric crop index out of range");
+    Metric whole = metric;
+    whole.crop = -1;
+    const Crop& c = crops[size_t(metric.crop)];
+    return evaluate_metric(whole, crop_image(image, c, 1), crop_image(reference, c, 1));
+  }
   if (metric.name == "relmse") return core::relmse(image, reference, metric.discard);
   if (metric.name == "mse") return core::mse(image, reference, metric.discard);
   if (metric.name == "mape") return core::compare(image, reference, metric.discard).mape;

@@ -21,7 +21,9 @@ namespace dp::experiments {
 // Index into `layers` of the layer to score (see above).
 size_t scored_layer(const std::vector<core::NamedLayer>& layers, const std::string& reconstruction);
 
-double evaluate_metric(const Metric& metric, const core::Image& image, const core::Image& reference);
+// `crops`: the config's crops (a metric with `crop` is scored on that region only).
+double evaluate_metric(const Metric& metric, const core::Image& image, const core::Image& reference,
+                       const std::vector<Crop>& crops = {});
 
 // False-colour map of the per-pixel relative squared error (mean over channels of
 // (X - R)^2 / (R^2 + 1e-3)), log10-scaled from kErrorMapLog10Min (dark blue) to

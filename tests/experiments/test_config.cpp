@@ -129,6 +129,9 @@ TEST_CASE("experiment config: value errors are ValueError with file:line", "[uni
   expect_error<ValueError>(std::string(kHead) + runs + "metrics: [relmse, psnr]\n", 6, "unknown metric 'psnr'");
   expect_error<ValueError>(std::string(kHead) + runs + "metrics: [{metric: mse, discard: -1}]\n", 6, "'discard'");
   expect_error<ValueError>(std::string(kHead) + runs + "crops: [[0, 0, 0, 5]]\n", 6, "width and height");
+  expect_error<ValueError>(std::string(kHead) + runs + "metrics: [{metric: mse, crop: -2}]\n", 6, "'crop' must be");
+  expect_error<ValueError>(std::string(kHead) + runs + "crops: [[0, 0, 5, 5]]\nmetrics: [relmse, {metric: mse, crop: 1}]\n",
+                           7, "metric crop 1 does not exist");
   expect_error<ValueError>(std::string(kHead) + "runs:\n  - {name: G-PT, integrator: gpt, reconstruction: l3}\n", 6,
                            "l1 or l2");
   expect_error<ValueError>(std::string(kHead) + "runs:\n  - {name: PT a, integrator: path}\n  - {name: pt-A, integrator: path}\n",

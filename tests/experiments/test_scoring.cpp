@@ -34,6 +34,20 @@ TEST_CASE("scoring: discarding the n worst pixels", "[unit]") {
   CHECK(Metric{"mse", 0}.column() == "mse");
 }
 
+TEST_CASE("scoring: a metric restricted to a crop sees only that region", "[unit]") {
+  const auto [img, ref] = images_with_outliers(3);  // outliers at pixels 3, 10, 17: (3,0), (0,1), (7,1)
+  const std::vector<Crop> crops = {{0, 2, 10, 8}, {2, 0, 4, 2}};
+  Metric m{"mse", 0};
+  m.crop = 0;  // rows 2..9: no outlier
+  CHECK(evaluate_metric(m, img, ref, crops) == 0.0);
+  CHECK(m.column() == "mse_crop0");
+  m.crop = 1;  // x 2..5, y 0..1: only (3,0), error 1 over 8 pixels
+  CHECK(evaluate_metric(m, img, ref, crops) == Approx(1.0 / 8.0));
+  m.discard = 1;
+  CHECK(evaluate_metric(m, img, ref, crops) == 0.0);
+  CHECK(m.column() == "mse_discard1_crop1");
+}
+
 TEST_CASE("scoring: error map colours", "[unit]") {
   core::Image ref(4, 1, Rgb::Constant(0.5f));
   core::Image img = ref;
