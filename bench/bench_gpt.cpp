@@ -6,8 +6,9 @@
 // only). The resolution is reduced through the scene's camera (a YAML variant in memory).
 // Usage: bench_gpt SCENE.yaml... [--res N] [--ref-seconds S] [--seconds S] [--threads T]
 //                  [--shifts reconnection,manifold[:always]] [--region X0 Y0 X1 Y1] [--diagnose N] [--seed S]
-//                  [--gradvar RUNS SPP]
-// (--seed offsets the seeds of the equal-time runs; every shift row of a scene uses the
+//                  [--seeds N] [--gradvar RUNS SPP]
+// (--seed offsets the seeds of the equal-time runs, --seeds N repeats them for seeds
+// seed .. seed+N-1 against one reference; every shift row of a scene uses the
 // same G-PT seed, so its base paths are the same and the rows differ by the shift.)
 // Prints one CSV row per scene and G-PT shift (`--set shift=...`; each row has its own
 // equal-time PT run; reference noise is included in every relMSE; the reference has
@@ -240,6 +241,7 @@ int main(int argc, char** argv) {
   double region[4] = {0, 0, 1, 1};
   int diagnose_paths = 0;
   uint64_t seed = 0;
+  int seeds = 1;
   int gradvar_runs = 0, gradvar_spp = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--res") && i + 1 < argc) res = std::atoi(argv[++i]);
@@ -255,6 +257,8 @@ int main(int argc, char** argv) {
       gradvar_spp = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) {
+      seeds = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--diagnose") && i + 1 < argc) {
       diagnose_paths = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--region") && i + 4 < argc) {
@@ -271,18 +275,19 @@ int main(int argc, char** argv) {
     for (const auto& path : scenes) diagnose(*load_at_resolution(path, res), path, diagnose_paths);
     return 0;
   }
-  std::printf("scene,shift,resolution,threads,ref_spp,gpt_spp,gpt_wall_s,gpt_render_s,gpt_solve_s,pt_spp,pt_wall_s,"
+  std::printf("scene,seed,shift,resolution,threads,ref_spp,gpt_spp,gpt_wall_s,gpt_render_s,gpt_solve_s,pt_spp,pt_wall_s,"
               "pt_ms_per_spp,gpt_ms_per_spp,overhead,relmse_pt,relmse_gpt_primal,relmse_gpt_l1,relmse_gpt_l2,"
               "pt_over_l1,pt_over_l2,region_relmse_pt,region_relmse_l1,region_relmse_l2\n");
   for (const auto& path : scenes) {
     const auto s = load_at_resolution(path, res);
     const auto ref = render(*s, "path", ref_seconds, threads, 7);
+    for (uint64_t sd = seed; sd < seed + uint64_t(seeds); ++sd)
     for (const auto& shift : shifts) {
-      auto gpt = render(*s, "gpt", seconds, threads, 11 + 1000 * seed, shift);
+      auto gpt = render(*s, "gpt", seconds, threads, 11 + 1000 * sd, shift);
       auto number = [&](const char* key) { return std::stod(gpt.info[key].dump()); };  // core::Json writes only
       const double gpt_render = number("render_seconds");
       const double gpt_solve = number("solve_l1_seconds") + number("solve_l2_seconds");
-      const auto pt = render(*s, "path", gpt.wall_seconds, threads, 13 + 1000 * seed);
+      const auto pt = render(*s, "path", gpt.wall_seconds, threads, 13 + 1000 * sd);
       const core::Image& R = ref.layers[0].image;
       const double e_pt = core::relmse(pt.layers[0].image, R);
       const double e_primal = core::relmse(layer(gpt, "primal"), R);
@@ -290,9 +295,9 @@ int main(int argc, char** argv) {
       const double e_l2 = core::relmse(layer(gpt, "recon_l2"), R);
       const double pt_ms = 1e3 * pt.wall_seconds / double(pt.min_spp);
       const double gpt_ms = 1e3 * gpt_render / double(gpt.min_spp);
-      std::printf("%s,%s,%d,%d,%lld,%lld,%.2f,%.2f,%.3f,%lld,%.2f,%.2f,%.2f,%.2f,%.5g,%.5g,%.5g,%.5g,%.2f,%.2f,%.5g,%.5g,"
+      std::printf("%s,%llu,%s,%d,%d,%lld,%lld,%.2f,%.2f,%.3f,%lld,%.2f,%.2f,%.2f,%.2f,%.5g,%.5g,%.5g,%.5g,%.2f,%.2f,%.5g,%.5g,"
                   "%.5g\n",
-                  path.c_str(), shift.c_str(), res, threads, (long long)ref.min_spp, (long long)gpt.min_spp,
+                  path.c_str(), (unsigned long long)sd, shift.c_str(), res, threads, (long long)ref.min_spp, (long long)gpt.min_spp,
                   gpt.wall_seconds, gpt_render, gpt_solve, (long long)pt.min_spp, pt.wall_seconds, pt_ms, gpt_ms,
                   gpt_ms / pt_ms, e_pt, e_primal, e_l1, e_l2, e_pt / e_l1, e_pt / e_l2,
                   region_relmse(pt.layers[0].image, R, region), region_relmse(layer(gpt, "recon_l1"), R, region),
