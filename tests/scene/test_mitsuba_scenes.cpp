@@ -166,9 +166,11 @@ TEST_CASE("mitsuba: cornell-box agrees with the Tungsten reference", "[slow]") {
   }
 }
 
-// Open discrepancy (see the importer's report): our image is brighter around the glass
-// teapot (~+20% in those blocks) and ~1% brighter on average; the cause is not found
-// yet, so this case may fail.
+// Rendered at the file's max_depth - 1: Bitterli's Mitsuba exports write Tungsten's
+// max_bounces + 1, and Tungsten's max_bounces = N means N segments, as our max_depth does
+// (evidence in docs/mitsuba_import.md). The image mean then agrees to about 0.5 % per channel,
+// but the glass teapot's blocks are still +8..+21 % brighter, with no cause found, so
+// this case may fail.
 TEST_CASE("mitsuba: veach-ajar agrees with the Tungsten reference", "[slow][!mayfail]") {
   if (!have_shared()) return;
   {
@@ -178,7 +180,7 @@ TEST_CASE("mitsuba: veach-ajar agrees with the Tungsten reference", "[slow][!may
     opt.parameters = {{"resx", "320"}, {"resy", "180"}};
     const auto scene = load_scene_mitsuba(p.string(), opt);
     const core::Image ref = core::read_exr((shared_scenes() / "veach-ajar" / "TungstenRender.exr").string());
-    const BlockStats s = compare(*scene, ref, 4, 20, 32, 16, scene->integrator_defaults().max_depth);
+    const BlockStats s = compare(*scene, ref, 4, 20, 32, 16, scene->integrator_defaults().max_depth - 1);
     report("veach-ajar", s);
     CHECK(s.over3 <= s.blocks / 20);
   }
