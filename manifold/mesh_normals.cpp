@@ -89,4 +89,12 @@ size_t estimate_vertex_normals(scene::TriangleMesh& mesh, const NormalEstimation
   return points.size();
 }
 
+scene::MeshNormalHook normal_estimation_hook(const NormalEstimation& opts) {
+  return [opts](scene::TriangleMesh& mesh, const scene::Bsdf* material) {
+    if (!needs_vertex_normals(mesh, material)) return false;
+    estimate_vertex_normals(mesh, opts);
+    return true;
+  };
+}
+
 }  // namespace dp::manifold

@@ -5,14 +5,17 @@
 // walks need; a mesh without normals is flat shaded and every specular chain on it sees
 // dn = 0 (faceted caustics).
 //
-// To be called once at load time, only for meshes whose material needs it
-// (needs_vertex_normals). NOT yet wired into the scene loaders: that integration point
-// (after the mesh is read, before Scene::commit) belongs to the loader owners.
+// Called once at load time, only for meshes whose material needs it
+// (needs_vertex_normals): the YAML loader calls the hook returned by
+// normal_estimation_hook() when the caller passes it in scene::LoadOptions (the CLI,
+// the experiment runner and bench_pt do). The Mitsuba importer keeps its own
+// angle-weighted normals (Mitsuba's behaviour) and does not use the hook.
 #pragma once
 
 #include <cstddef>
 
 #include "scene/bsdf.h"
+#include "scene/loader.h"
 #include "scene/shape.h"
 
 namespace dp::manifold {
@@ -37,5 +40,9 @@ bool needs_vertex_normals(const scene::TriangleMesh& mesh, const scene::Bsdf* ma
 // Vertices with identical positions are welded first so split uv seams stay smooth.
 // Returns the number of distinct (welded) positions. Existing normals are replaced.
 size_t estimate_vertex_normals(scene::TriangleMesh& mesh, const NormalEstimation& opts = {});
+
+// The loader hook (scene::LoadOptions::mesh_normals): if needs_vertex_normals(mesh,
+// material), estimate_vertex_normals(mesh, opts) and true; otherwise false, mesh untouched.
+scene::MeshNormalHook normal_estimation_hook(const NormalEstimation& opts = {});
 
 }  // namespace dp::manifold

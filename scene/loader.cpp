@@ -11,10 +11,10 @@
 
 namespace dp::scene {
 
-std::unique_ptr<Scene> load_scene(const std::string& path) {
+std::unique_ptr<Scene> load_scene(const std::string& path, const LoadOptions& options) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".yaml" || ext == ".yml") return load_scene_yaml(path);
+  if (ext == ".yaml" || ext == ".yml") return load_scene_yaml(path, options);
   if (ext == ".xml") return load_scene_mitsuba(path);
   throw IoError("unknown scene file type '" + ext + "' (expected .yaml, .yml or .xml)", path);
 }

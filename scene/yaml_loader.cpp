@@ -114,11 +114,11 @@ YAML::Node parse_document(const std::string& text, const std::string& path) {
   return root;
 }
 
-std::unique_ptr<Scene> build(const std::string& text, const std::string& path) {
+std::unique_ptr<Scene> build(const std::string& text, const std::string& path, const LoadOptions& options) {
   const YAML::Node root = parse_document(text, path);
   auto scene = std::make_unique<Scene>();
   scene->set_source(path);
-  LoadState st{Context{path, std::filesystem::path(path).parent_path()}, *scene, {}, {}};
+  LoadState st{Context{path, std::filesystem::path(path).parent_path()}, *scene, {}, {}, &options};
   const Context& ctx = st.ctx;
   check_keys(ctx, root,
              {"version", "camera", "integrator", "materials", "media", "shapes", "lights", "medium"},
@@ -146,17 +146,18 @@ std::unique_ptr<Scene> build(const std::string& text, const std::string& path) {
 }  // namespace
 }  // namespace yaml
 
-std::unique_ptr<Scene> load_scene_yaml_string(const std::string& text, const std::string& path) {
-  return yaml::build(text, path);
+std::unique_ptr<Scene> load_scene_yaml_string(const std::string& text, const std::string& path,
+                                              const LoadOptions& options) {
+  return yaml::build(text, path, options);
 }
 
-std::unique_ptr<Scene> load_scene_yaml(const std::string& path) {
+std::unique_ptr<Scene> load_scene_yaml(const std::string& path, const LoadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open scene file", path);
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw IoError("cannot read scene file", path);
-  return yaml::build(ss.str(), path);
+  return yaml::build(ss.str(), path, options);
 }
 
 }  // namespace dp::scene

@@ -15,6 +15,7 @@
 
 #include "core/math.h"
 #include "scene/bsdf.h"
+#include "scene/loader.h"
 #include "scene/medium.h"
 #include "scene/scene.h"
 #include "scene/texture.h"
@@ -36,6 +37,7 @@ struct LoadState {
   };
   std::map<std::string, MaterialDef> materials;
   std::map<std::string, MediumDef> media;
+  const LoadOptions* options = nullptr;  // owned by the caller of load_scene_yaml*
 
   // Resolve a name (a scalar node) to a scene index; ParseError for undefined names.
   int material_index(const YAML::Node& ref);

@@ -1,7 +1,9 @@
 // The `shapes:` section: a list of {type: mesh | triangle | quad | sphere, ...}.
 // Keys common to every shape: material, emission (RGB radiance, front side only),
 // interior, exterior (medium names), name, transform (yaml_transform.h).
-//   mesh:     file (.obj/.ply, relative to the scene file), smooth (default true)
+//   mesh:     file (.obj/.ply, relative to the scene file), smooth (default true); a
+//             smooth mesh whose file has no normals is offered to
+//             LoadOptions::mesh_normals with its material (loader.h)
 //   triangle: vertices [[x,y,z] x 3]            uv (0,0), (1,0), (0,1)
 //   quad:     vertices [[x,y,z] x 4], planar and in order (convex, no bow-tie);
 //             split into (v0,v1,v2), (v0,v2,v3);  uv (0,0), (1,0), (1,1), (0,1)
@@ -95,6 +97,23 @@ std::unique_ptr<TriangleMesh> make_mesh(const Context& ctx, const YAML::Node& m)
   return mesh;
 }
 
+// Offers a smooth mesh file without normals to the caller's hook (LoadOptions::
+// mesh_normals, e.g. CGAL normals for specular/glossy materials). Runs after the
+// transform, clean-up and material lookup, before the mesh joins the scene; finalize()
+// is re-run because the arrays changed (TriangleMesh contract).
+void offer_for_normals(LoadState& st, const YAML::Node& m, TriangleMesh& mesh) {
+  if (!st.options || !st.options->mesh_normals || !mesh.smooth || !mesh.normals.empty()) return;
+  const Bsdf* material = mesh.material >= 0 ? st.scene.bsdfs().at(size_t(mesh.material)).get() : nullptr;
+  if (!st.options->mesh_normals(mesh, material)) return;
+  try {
+    mesh.finalize();
+  } catch (const Error& e) {
+    parse_error(st.ctx, m, e.message());
+  }
+  log::info(st.ctx.file, ":", line_of(m), ": estimated smooth vertex normals for mesh '",
+            get_string(st.ctx, m["file"], "file"), "' (", mesh.positions.size(), " vertices)");
+}
+
 std::unique_ptr<Shape> make_sphere(const Context& ctx, const YAML::Node& m, const Transform* xf) {
   Vec3 center = get_vec3(ctx, require(ctx, m, "center", "sphere shape"), "center");
   const YAML::Node rn = require(ctx, m, "radius", "sphere shape");
@@ -132,6 +151,7 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
   if (const YAML::Node t = m["transform"]; t.IsDefined()) xf = parse_transform(ctx, t);
 
   std::unique_ptr<Shape> shape;
+  TriangleMesh* mesh_file = nullptr;  // a `type: mesh` shape, until it joins the scene
   if (type == "sphere") {
     shape = make_sphere(ctx, m, xf ? &*xf : nullptr);
   } else {
@@ -148,6 +168,7 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
       log::warn(ctx.file, ":", line_of(m), ": skipped ", mesh->degenerate_skipped,
                 " degenerate triangle(s) of mesh '", mesh->name, "'");
     if (mesh->triangles.empty()) value_error(ctx, m, type + " shape has no non-degenerate triangles");
+    if (type == "mesh") mesh_file = mesh.get();
     shape = std::move(mesh);
   }
 
@@ -165,6 +186,7 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
   }
   if (const YAML::Node i = m["interior"]; i.IsDefined()) shape->interior_medium = st.medium_index(i);
   if (const YAML::Node x = m["exterior"]; x.IsDefined()) shape->exterior_medium = st.medium_index(x);
+  if (mesh_file) offer_for_normals(st, m, *mesh_file);
   st.scene.add_shape(std::move(shape), emission);
 }
 
