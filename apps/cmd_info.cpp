@@ -2,13 +2,14 @@
 #include <cstdio>
 
 #include "apps/commands.h"
+#include "manifold/mesh_normals.h"
 #include "scene/loader.h"
 
 namespace dp::apps {
 
 namespace {
 void run_info(const std::string& path) {
-  const auto s = scene::load_scene(path);
+  const auto s = scene::load_scene(path, {manifold::normal_estimation_hook()});
   const auto& cam = s->camera();
   const auto& caps = s->caps();
   const auto& b = s->bounds();

@@ -13,6 +13,7 @@
 #include "core/timer.h"
 #include "integrators/integrator.h"
 #include "integrators/tile_scheduler.h"
+#include "manifold/mesh_normals.h"
 #include "scene/loader.h"
 
 namespace dp::apps {
@@ -33,7 +34,7 @@ struct RenderArgs {
 void run_render(const RenderArgs& a) {
   if (a.quiet) log::set_level(log::Level::warn);
   core::Timer load_timer;
-  const auto scene = scene::load_scene(a.scene);
+  const auto scene = scene::load_scene(a.scene, {manifold::normal_estimation_hook()});
   const double load_seconds = load_timer.seconds();
   const auto& defaults = scene->integrator_defaults();
 

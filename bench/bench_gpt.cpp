@@ -32,6 +32,7 @@
 #include "gradients/manifold_shift.h"
 #include "pathspace/path_builder.h"
 #include "integrators/integrator.h"
+#include "manifold/mesh_normals.h"
 #include "scene/loader.h"
 
 using namespace dp;
@@ -89,7 +90,7 @@ std::unique_ptr<scene::Scene> load_at_resolution(const std::string& path, int re
   const std::string text =
       std::regex_replace(ss.str(), std::regex(R"(resolution:\s*\[[^\]]*\])"),
                          "resolution: [" + std::to_string(res) + ", " + std::to_string(res) + "]");
-  return scene::load_scene_yaml_string(text, path);
+  return scene::load_scene_yaml_string(text, path, {manifold::normal_estimation_hook()});
 }
 
 // --diagnose N: where the gradients of a scene come from. N base walks (G-PT's sampling)

@@ -16,6 +16,7 @@
 #include "core/warp.h"
 #include "integrators/integrator.h"
 #include "integrators/tile_scheduler.h"
+#include "manifold/mesh_normals.h"
 #include "scene/embree_accel.h"
 #include "scene/loader.h"
 
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   }
   std::printf("scene,resolution,spp,threads,pt_seconds,paths_per_second,rays,shadow_rays,bare_seconds,pt_vs_bare\n");
   for (const auto& path : scenes) {
-    const auto s = scene::load_scene(path);
+    const auto s = scene::load_scene(path, {manifold::normal_estimation_hook()});
     integrators::Settings settings;
     auto pt = integrators::make_integrator("path", settings);
     integrators::RenderOptions opt;

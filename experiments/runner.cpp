@@ -19,6 +19,7 @@
 #include "experiments/report.h"
 #include "experiments/results_csv.h"
 #include "experiments/scoring.h"
+#include "manifold/mesh_normals.h"
 #include "scene/loader.h"
 
 namespace dp::experiments {
@@ -115,7 +116,7 @@ std::string point_stem(const ExperimentConfig& config, size_t run, size_t budget
 ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOptions& options) {
   ExperimentResult out;
   out.output_dir = config.output;
-  const auto scene = scene::load_scene(config.scene);
+  const auto scene = scene::load_scene(config.scene, {manifold::normal_estimation_hook()});
   const int max_depth = scene->integrator_defaults().max_depth;
   const auto& cam = scene->camera();
   for (const auto& c : config.crops)
