@@ -153,8 +153,10 @@ ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const
       copy.walk_status = walked.walk_status;  // the copy stands in for the failed walk
       copy.walk_iterations = walked.walk_iterations;
       copy.walk_traces = walked.walk_traces;
+      copy.walk_refused = walked.walk_refused;
       out.walk_status = walked.walk_status;
       out.walk_traces = walked.walk_traces;
+      out.walk_refused = walked.walk_refused;
     }
     // The copy is the offset only if the reverse shift (from the copy) would not walk.
     if (done && reverse_walks(copy.path, k, base)) return ShiftStatus::not_invertible;
@@ -280,6 +282,7 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
     for (int j = 0; j <= k; ++j) back_copy.path.append(base[j]);
     if (copy_chain(o, k, m, back_copy) && same_shapes(o, back_copy, k, m)) {
       out.walk_status = int(WalkStatus::not_reversible);
+      out.walk_refused = true;
       return ShiftStatus::not_invertible;
     }
   }

@@ -40,6 +40,7 @@ void ShiftResult::reset(int n) {
   alive = 0;
   reconnected = -1;
   walk_status = -1;
+  walk_refused = false;
   walk_iterations = 0;
   walk_traces = 0;
 }

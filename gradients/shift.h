@@ -51,6 +51,9 @@ struct ShiftResult {
   // the chain's end): status (manifold::WalkStatus as an integer, -1 = no walk),
   // iterations and chain re-traces, for the integrator's manifold statistics.
   int walk_status = -1;
+  // With walk_status set: the walk converged but was refused because the walked
+  // offset's own half-vector copy stays on the chain (the reverse shift would copy).
+  bool walk_refused = false;
   int walk_iterations = 0;
   int64_t walk_traces = 0;
 

@@ -26,6 +26,7 @@ void GptCounters::flush(core::Stats& stats) const {
     stats.add("gpt.shift.nee_fail." + cause, nee_fail[size_t(i)]);
   }
   stats.add("gpt.shift.nee_base_zero_density", nee_base_zero);
+  if (walks.attempted > 0) stats.add("gpt.manifold.converged_but_refused", walks_refused);
   for (int i = 0; i < gradients::kStepKindCount; ++i) {
     const std::string kind = gradients::to_string(gradients::StepKind(i));
     stats.add("gpt.step." + kind + ".attempted", attempted[size_t(i)]);
@@ -62,7 +63,9 @@ void GptTracer::count(const Path& base, const ShiftResult& r, GptCounters& c) co
     if (r.alive >= k + 2) ++c.succeeded[size_t(r.step[size_t(k)])];
   }
   if (r.walk_status >= 0) {
-    c.walks.record(manifold::WalkStatus(r.walk_status), r.walk_iterations);
+    // A refused walk converged (counted so), but the reverse shift would copy.
+    c.walks_refused += r.walk_refused;
+    c.walks.record(r.walk_refused ? manifold::WalkStatus::ok : manifold::WalkStatus(r.walk_status), r.walk_iterations);
     c.walks.traces += r.walk_traces;
   }
   for (int k = 1; k < r.alive; ++k) {

@@ -32,6 +32,7 @@ struct GptCounters {
   std::array<int64_t, gradients::kShiftStatusCount> nee_fail{};
   int64_t nee_base_zero = 0;  // base light samples of zero density (not shift failures)
   manifold::WalkStats walks;  // manifold shift: walks by outcome ("gpt.manifold.*")
+  int64_t walks_refused = 0;  // converged walks not used: the reverse shift would copy
   void flush(core::Stats& stats) const;
 };
 
