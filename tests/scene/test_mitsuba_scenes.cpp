@@ -160,7 +160,8 @@ TEST_CASE("mitsuba: cornell-box agrees with the Tungsten reference", "[slow]") {
     xml = std::regex_replace(xml, std::regex("value=\"1024\""), "value=\"128\"");
     const auto scene = load_scene_mitsuba_string(xml, p.string());
     const core::Image ref = core::read_exr((shared_scenes() / "cornell-box" / "TungstenRender.exr").string());
-    const BlockStats s = compare(*scene, ref, 8, 8, 32, 16, scene->integrator_defaults().max_depth);
+    // The file's maxDepth 65 is Tungsten's max_bounces 64 + 1 (see veach-ajar below).
+    const BlockStats s = compare(*scene, ref, 8, 8, 32, 16, scene->integrator_defaults().max_depth - 1);
     report("cornell-box", s);
     CHECK(s.over3 <= s.blocks / 20);
   }
