@@ -159,8 +159,10 @@ ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const
       out.walk_refused = walked.walk_refused;
     }
     // The copy is the offset only if the reverse shift (from the copy) would not walk.
-    if (done && reverse_walks(copy.path, k, base)) return ShiftStatus::not_invertible;
-  } else if (!stays && eligible < 0 && done && chain_end(copy.path, k, base[k]) >= 0) {
+    // Also when the copy fails later: its prefix up to its own first connectable vertex
+    // (e.g. a light the base's chain passed by) is an offset path that contributes.
+    if (reverse_walks(copy.path, k, base)) return ShiftStatus::not_invertible;
+  } else if (!stays && eligible < 0 && chain_end(copy.path, k, base[k]) >= 0) {
     return ShiftStatus::not_invertible;  // walk always: the reverse shift would walk the copy's chain
   }
   if (!done) return ReconnectionShift::step(base, k, out);  // the shift loop fails where the copy did
