@@ -1,5 +1,7 @@
 #include "integrators/gpt/gpt_tracer.h"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "gradients/manifold_shift.h"
@@ -90,6 +92,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
   thread_local ShiftResult res;
   thread_local std::vector<Rgbd> beta, beta_o;
   thread_local std::vector<double> ratio;
+  thread_local std::vector<double> b_other_bsdf;  // base light pdf / bsdf pdf per BSDF path, lazily (NaN: not yet)
   ++counters.samples;
   m_builder.build(px, py, stream, base);
   const int n = base.size();
@@ -104,6 +107,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
   for (int k = 1; k + 1 < n; ++k)
     beta[size_t(k + 1)] = beta[size_t(k)] * base[k].f_cos.cast<double>() / (base[k].pdf * double(base[k].rr));
 
+  b_other_bsdf.assign(size_t(n), std::numeric_limits<double>::quiet_NaN());
   static constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
   for (int nb = 0; nb < 4; ++nb) {
     const int qx = px + kDx[nb], qy = py + kDy[nb];
@@ -159,16 +163,21 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
       }
       accumulate(fb, fo, gradients::symmetric_power_weight(b_other, c, d), has_offset);
     }
-    // BSDF paths (x_0..x_k), k >= 2, whose last vertex may emit.
+    // BSDF paths (x_0..x_k), k >= 2, whose last vertex may emit. The light densities (for
+    // the MIS weights) are only needed where the base or the offset vertex emits; the
+    // base's is the same for all four neighbours.
     for (int k = 2; k < n; ++k) {
       const int m = k - 1;
       const Vertex& bv = base[k];
-      const Rgbd fb = beta[size_t(k)] * bv.emission.cast<double>();
-      const double b_other =
-          nee_at(base[m], m_settings.nee) ? pathspace::light_pdf(m_scene, base[m].p(), bv) / base[m].pdf : 0.0;
+      const bool has_offset = inside && k < alive;
+      const bool base_emits = !is_black(bv.emission);
+      if (!base_emits && !(has_offset && !is_black(res.path[k].emission))) continue;
+      const Rgbd fb = base_emits ? Rgbd(beta[size_t(k)] * bv.emission.cast<double>()) : Rgbd::Zero();
+      double& b_other = b_other_bsdf[size_t(k)];
+      if (std::isnan(b_other))
+        b_other = nee_at(base[m], m_settings.nee) ? pathspace::light_pdf(m_scene, base[m].p(), bv) / base[m].pdf : 0.0;
       double c = 0, d = 0;
       Rgbd fo = Rgbd::Zero();
-      const bool has_offset = inside && k < alive;
       if (has_offset) {
         const Vertex& om = res.path[m];
         const Vertex& ov = res.path[k];
