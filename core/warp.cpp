@@ -89,11 +89,6 @@ float square_to_uniform_cone_pdf(const Vec3& w, float cos_max) {
 
 // Heitz 2019-style low-distortion mapping is not invertible in closed form as
 // simply; use the classic sqrt mapping b1 = 1 - sqrt(u1), b2 = u2 sqrt(u1).
-Vec2 square_to_uniform_triangle(const Vec2& u) {
-  const float s = std::sqrt(u.x());
-  return Vec2(1.0f - s, u.y() * s);
-}
-
 Vec2 uniform_triangle_to_square(const Vec2& b) {
   const float s = 1.0f - b.x();
   const float u1 = s * s;

@@ -35,7 +35,10 @@ float square_to_uniform_cone_pdf(const Vec3& w, float cos_max);
 
 // Uniform on a triangle: returns barycentrics (b1, b2) of vertices 1 and 2
 // (b0 = 1 - b1 - b2). pdf w.r.t. area is 1 / area.
-Vec2 square_to_uniform_triangle(const Vec2& u);
+inline Vec2 square_to_uniform_triangle(const Vec2& u) {  // inline: on the light-sampling path
+  const float s = std::sqrt(u.x());
+  return Vec2(1.0f - s, u.y() * s);
+}
 Vec2 uniform_triangle_to_square(const Vec2& b);
 
 }  // namespace dp::core::warp

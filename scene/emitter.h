@@ -24,6 +24,7 @@ class Distribution2D;
 namespace dp::scene {
 
 class Shape;
+class TriangleMesh;
 
 struct DirectSample {
   Vec3 p{0, 0, 0};   // point on the emitter (for infinite emitters: ref + wi * far)
@@ -58,7 +59,7 @@ class Emitter {
 
 class AreaEmitter final : public Emitter {
  public:
-  AreaEmitter(const Shape* shape, const Rgb& radiance) : m_shape(shape), m_radiance(radiance) {}
+  AreaEmitter(const Shape* shape, const Rgb& radiance);
   EmitterKind kind() const override { return EmitterKind::area; }
   DirectSample sample_direct(const Vec3& ref, const Vec2& u) const override;
   float pdf_direct(const Vec3& ref, const Vec3& p, const Vec3& n, const Vec3& w) const override;
@@ -69,6 +70,7 @@ class AreaEmitter final : public Emitter {
 
  private:
   const Shape* m_shape;
+  const TriangleMesh* m_mesh = nullptr;  // m_shape if it is a mesh (sampled inline)
   Rgb m_radiance;
 };
 

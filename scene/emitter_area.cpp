@@ -50,9 +50,13 @@ float cone_pdf(const SphereCone& c) { return float(1.0 / (2.0 * kPiD * c.one_min
 
 }  // namespace
 
+AreaEmitter::AreaEmitter(const Shape* shape, const Rgb& radiance) : m_shape(shape), m_radiance(radiance) {
+  if (shape->kind() == ShapeKind::mesh) m_mesh = static_cast<const TriangleMesh*>(shape);
+}
+
 DirectSample AreaEmitter::sample_direct(const Vec3& ref, const Vec2& u) const {
   DirectSample s;
-  if (m_shape->kind() == ShapeKind::sphere) {
+  if (!m_mesh && m_shape->kind() == ShapeKind::sphere) {
     const auto& sphere = static_cast<const Sphere&>(*m_shape);
     const SphereCone cone = sphere_cone(sphere, ref);
     if (cone.valid) {
@@ -84,18 +88,20 @@ DirectSample AreaEmitter::sample_direct(const Vec3& ref, const Vec2& u) const {
       return s;
     }
   }
-  const PositionSample ps = m_shape->sample_area(u);
+  const PositionSample ps = m_mesh && m_mesh->area() > 0.0f ? m_mesh->sample_area_inline(u) : m_shape->sample_area(u);
   s.p = ps.p;
   s.n = ps.n;
   s.pdf_area = ps.pdf_area;
   const Vec3 d = ps.p - ref;
   const float dist2 = d.squaredNorm();
   if (!(dist2 > 0.0f)) return s;  // ref on the emitter: no direction
+  // pdf = pdf_area dist^2 / cos_l with cos_l = -n.d / dist, written as
+  // pdf_area dist^3 / (-n.d) so that it does not wait for the normalized direction.
+  const float n_dot = -ps.n.dot(d);
   s.dist = std::sqrt(dist2);
   s.wi = d / s.dist;
-  const float cos_l = -ps.n.dot(s.wi);
-  if (!(cos_l > 0.0f)) return s;  // ref sees the back side
-  s.pdf = ps.pdf_area * dist2 / cos_l;
+  if (!(n_dot > 0.0f)) return s;  // ref sees the back side
+  s.pdf = ps.pdf_area * dist2 * s.dist / n_dot;
   if (!std::isfinite(s.pdf)) {
     s.pdf = 0;
     return s;

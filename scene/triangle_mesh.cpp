@@ -83,6 +83,13 @@ void TriangleMesh::finalize() {
     m_cdf[i] = float(running / total);
   }
   if (!m_cdf.empty()) m_cdf.back() = 1.0f;
+  m_cdf_lo.assign(m_cdf.size(), 0.0f);
+  for (size_t i = 1; i < m_cdf.size(); ++i) m_cdf_lo[i] = m_cdf[i - 1];
+  m_cdf_inv_width.assign(m_cdf.size(), 0.0f);
+  for (size_t i = 0; i < m_cdf.size(); ++i) {
+    const float width = m_cdf[i] - m_cdf_lo[i];
+    if (width > 0.0f) m_cdf_inv_width[i] = 1.0f / width;
+  }
   m_area = float(total);
   m_frames.resize(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) m_frames[i] = compute_frame(i);
@@ -129,24 +136,7 @@ float TriangleMesh::triangle_area(size_t i) const {
 
 PositionSample TriangleMesh::sample_area(const Vec2& u) const {
   DP_CHECK(!m_cdf.empty(), "sample_area on an empty or unfinalized mesh");
-  // Pick a triangle with probability area_i / area and reuse u.x within its CDF cell.
-  const auto it = std::upper_bound(m_cdf.begin(), m_cdf.end(), u.x());
-  const size_t i = std::min(size_t(it - m_cdf.begin()), m_cdf.size() - 1);
-  const float lo = i == 0 ? 0.0f : m_cdf[i - 1];
-  const float width = m_cdf[i] - lo;
-  const float ux = width > 0 ? std::clamp((u.x() - lo) / width, 0.0f, std::nextafter(1.0f, 0.0f)) : 0.5f;
-  const Vec2 b = core::warp::square_to_uniform_triangle(Vec2(ux, u.y()));
-  const auto& tri = triangles[i];
-  const Vec3& v0 = positions[tri[0]];
-  const Vec3& v1 = positions[tri[1]];
-  const Vec3& v2 = positions[tri[2]];
-  PositionSample s;
-  const float b0 = 1.0f - b.x() - b.y();
-  s.p = b0 * v0 + b.x() * v1 + b.y() * v2;
-  s.n = (v1 - v0).cross(v2 - v0).normalized();
-  s.uv = uvs.empty() ? b : Vec2(b0 * uvs[tri[0]] + b.x() * uvs[tri[1]] + b.y() * uvs[tri[2]]);
-  s.pdf_area = 1.0f / m_area;
-  return s;
+  return sample_area_inline(u);
 }
 
 void TriangleMesh::fill_surface(int prim, const Vec2& b, const Ray& ray, float t, SurfacePoint& out) const {
