@@ -81,9 +81,14 @@ void Scene::commit() {
 }
 
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
+  std::optional<SurfaceHit> hit(std::in_place);
+  if (!intersect(ray, *hit)) hit.reset();
+  return hit;
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RawHit raw;
-  if (!m_accel->intersect(ray, raw)) return std::nullopt;
-  SurfaceHit hit;
+  if (!m_accel->intersect(ray, raw)) return false;
   const Shape& shape = *m_shapes[size_t(raw.shape)];
   shape.fill_surface(raw.prim, raw.b, ray, raw.t, hit);
   hit.t = raw.t;
@@ -93,38 +98,10 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   hit.emitter = shape.emitter >= 0 ? m_emitters[size_t(shape.emitter)].get() : nullptr;
   hit.interior_medium = shape.interior_medium;
   hit.exterior_medium = shape.exterior_medium;
-  return hit;
+  return true;
 }
 
 bool Scene::occluded(const Ray& ray) const { return m_accel->occluded(ray); }
-
-namespace {
-Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& d, float eps) {
-  const float scale = eps * (1.0f + p.cwiseAbs().maxCoeff());
-  return p + (ng.dot(d) >= 0.0f ? scale : -scale) * ng;
-}
-}  // namespace
-
-Ray Scene::spawn_ray(const SurfacePoint& sp, const Vec3& d) const {
-  Ray r;
-  r.o = offset_origin(sp.p, sp.ng, d, m_epsilon);
-  r.d = d;
-  r.tmin = 0.0f;
-  r.tmax = kInfinity;
-  return r;
-}
-
-Ray Scene::spawn_segment(const SurfacePoint& sp, const Vec3& target) const {
-  const Vec3 d0 = target - sp.p;
-  Ray r;
-  r.o = offset_origin(sp.p, sp.ng, d0, m_epsilon);
-  const Vec3 d = target - r.o;
-  const float len = d.norm();
-  r.d = d / len;
-  r.tmin = 0.0f;
-  r.tmax = std::max(0.0f, len - 2.0f * m_epsilon * (1.0f + target.cwiseAbs().maxCoeff()));
-  return r;
-}
 
 bool Scene::occluded(const Vec3& a, const Vec3& b) const {
   const Vec3 d = b - a;
@@ -138,17 +115,6 @@ bool Scene::occluded(const Vec3& a, const Vec3& b) const {
   r.tmax = len - eb;
   if (r.tmax <= r.tmin) return false;
   return m_accel->occluded(r);
-}
-
-const Emitter* Scene::sample_emitter(float u, float& pmf) const {
-  if (m_emitters.empty()) {
-    pmf = 0.0f;
-    return nullptr;
-  }
-  const size_t n = m_emitters.size();
-  const size_t i = std::min(size_t(u * float(n)), n - 1);
-  pmf = 1.0f / float(n);
-  return m_emitters[i].get();
 }
 
 float Scene::emitter_pmf(const Emitter* e) const {

@@ -61,18 +61,48 @@ class Scene {
 
   // --- queries (after commit) ---
   std::optional<SurfaceHit> intersect(const Ray& ray) const;
+  // The same query filling `hit` in place (false on a miss, `hit` then unspecified):
+  // hot loops avoid building and copying the optional's ~150-byte SurfaceHit.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Ray& ray) const;
   // True if the open segment between a and b is blocked (endpoints excluded by epsilon).
   bool occluded(const Vec3& a, const Vec3& b) const;
   // Ray leaving surface point sp in direction d, origin offset along ng to avoid
-  // self-intersection.
-  Ray spawn_ray(const SurfacePoint& sp, const Vec3& d) const;
+  // self-intersection. (Inline, as spawn_segment: called once or twice per path vertex,
+  // and a Ray returned from an out-of-line call is reloaded through memory.)
+  Ray spawn_ray(const SurfacePoint& sp, const Vec3& d) const {
+    Ray r;
+    r.o = offset_origin(sp.p, sp.ng, d, m_epsilon);
+    r.d = d;
+    r.tmin = 0.0f;
+    r.tmax = kInfinity;
+    return r;
+  }
   // Segment from sp toward target, shortened by epsilon at both ends.
-  Ray spawn_segment(const SurfacePoint& sp, const Vec3& target) const;
+  Ray spawn_segment(const SurfacePoint& sp, const Vec3& target) const {
+    const Vec3 d0 = target - sp.p;
+    Ray r;
+    r.o = offset_origin(sp.p, sp.ng, d0, m_epsilon);
+    const Vec3 d = target - r.o;
+    const float len = d.norm();
+    r.d = d / len;
+    r.tmin = 0.0f;
+    r.tmax = std::max(0.0f, len - 2.0f * m_epsilon * (1.0f + target.cwiseAbs().maxCoeff()));
+    return r;
+  }
 
   // Light selection for next-event estimation: proportional to emitted power is not
   // robust for environment maps, so selection is uniform over emitters.
-  const Emitter* sample_emitter(float u, float& pmf) const;
+  const Emitter* sample_emitter(float u, float& pmf) const {  // inline: once per path vertex
+    if (m_emitters.empty()) {
+      pmf = 0.0f;
+      return nullptr;
+    }
+    const size_t n = m_emitters.size();
+    const size_t i = std::min(size_t(u * float(n)), n - 1);
+    pmf = 1.0f / float(n);
+    return m_emitters[i].get();
+  }
   float emitter_pmf(const Emitter* e) const;
 
   const PerspectiveCamera& camera() const { return *m_camera; }
@@ -95,6 +125,11 @@ class Scene {
   const EmbreeAccel& accel() const { return *m_accel; }
 
  private:
+  static Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& d, float eps) {
+    const float scale = eps * (1.0f + p.cwiseAbs().maxCoeff());
+    return p + (ng.dot(d) >= 0.0f ? scale : -scale) * ng;
+  }
+
   std::vector<BsdfPtr> m_bsdfs;
   std::vector<std::string> m_bsdf_names;
   std::vector<ShapePtr> m_shapes;
