@@ -6,6 +6,9 @@
 //    included (they evaluate to 0).
 //  * pdf() is the solid-angle density of sample() producing wo, over its non-delta lobes
 //    (including the lobe-selection probability).
+//  * eval_pdf() returns eval() and stores pdf() in pdf_out: the same two values, in one
+//    call (next-event estimation with MIS needs both; microfacet BSDFs share h, D and
+//    G1(wi) between them, Phong its pow()).
 //  * sample() returns wo, weight = f(wi,wo) |cos(wo)| / pdf, and for a delta lobe
 //    pdf = the discrete probability of choosing that lobe (weight includes 1/pdf).
 //  * roughness(): the lowest microfacet alpha over the non-delta components (0 if the
@@ -59,6 +62,10 @@ class Bsdf {
   virtual ~Bsdf() = default;
   virtual Rgb eval(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo) const = 0;
   virtual float pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo) const = 0;
+  virtual Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const {
+    pdf_out = pdf(ctx, wi, wo);
+    return eval(ctx, wi, wo);
+  }
   // u_lobe selects among components, u drives the chosen component's 2D warp.
   virtual std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float u_lobe,
                                            const Vec2& u) const = 0;

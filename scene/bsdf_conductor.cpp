@@ -73,6 +73,22 @@ class RoughConductorBsdf final : public Bsdf {
     return m_distr.pdf_visible(wi, h) / (4.0f * wo.dot(h));
   }
 
+  // eval() and pdf() sharing h, D(h) and G1(wi, h); the same expressions in the same order.
+  Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const override {
+    pdf_out = 0.0f;
+    if (wi.z() <= 0.0f || wo.z() <= 0.0f) return Rgb::Zero();
+    const Vec3 h = (wi + wo).normalized();
+    const float d = m_distr.D(h);
+    if (d == 0.0f) return Rgb::Zero();  // pdf_visible is 0 too
+    const float g1_wi = m_distr.G1(wi, h);
+    // Heitz 2014, Eq. 17 (pdf_visible), Walter 2007, Eq. 14.
+    pdf_out = g1_wi * std::max(0.0f, wi.dot(h)) * d / wi.z() / (4.0f * wo.dot(h));
+    const float g = g1_wi * m_distr.G1(wo, h);
+    // Walter 2007, Eq. 20.
+    return conductor_fresnel(m_fresnel, wi.dot(h)) * detail::eval_or(m_spec, ctx.uv) *
+           (d * g / (4.0f * wi.z() * wo.z()));
+  }
+
   std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float, const Vec2& u) const override {
     if (wi.z() <= 0.0f) return std::nullopt;
     const Vec3 m = m_distr.sample_visible(wi, u);

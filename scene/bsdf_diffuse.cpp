@@ -21,6 +21,15 @@ class DiffuseBsdf final : public Bsdf {
     return core::warp::square_to_cosine_hemisphere_pdf(wo);
   }
 
+  Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const override {
+    if (wi.z() <= 0.0f || wo.z() <= 0.0f) {
+      pdf_out = 0.0f;
+      return Rgb::Zero();
+    }
+    pdf_out = core::warp::square_to_cosine_hemisphere_pdf(wo);
+    return m_albedo->eval(ctx.uv) * kInvPi;
+  }
+
   std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float, const Vec2& u) const override {
     if (wi.z() <= 0.0f) return std::nullopt;
     BsdfSample s;

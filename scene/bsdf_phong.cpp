@@ -36,6 +36,22 @@ class PhongBsdf final : public Bsdf {
     return (1.0f - m_spec_weight) * wo.z() * kInvPi + m_spec_weight * pdf_specular(wi, wo);
   }
 
+  // eval() and pdf() sharing the one pow(); the same expressions in the same order.
+  Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const override {
+    pdf_out = 0.0f;
+    if (wi.z() <= 0.0f || wo.z() <= 0.0f) return Rgb::Zero();
+    Rgb f = m_kd->eval(ctx.uv) * kInvPi;
+    const float ca = detail::reflect_local(wi).dot(wo);
+    float pdf_spec = 0.0f;
+    if (ca > 0.0f) {
+      const float p = std::pow(ca, m_n);
+      f += m_ks->eval(ctx.uv) * ((m_n + 2.0f) * kInv2Pi * p);
+      pdf_spec = (m_n + 1.0f) * kInv2Pi * p;
+    }
+    pdf_out = (1.0f - m_spec_weight) * wo.z() * kInvPi + m_spec_weight * pdf_spec;
+    return f;
+  }
+
   std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float u_lobe,
                                    const Vec2& u) const override {
     if (wi.z() <= 0.0f) return std::nullopt;
@@ -52,9 +68,9 @@ class PhongBsdf final : public Bsdf {
       s.lobe = kDiffuseReflection;
     }
     if (s.wo.z() <= 0.0f) return std::nullopt;
-    s.pdf = pdf(ctx, wi, s.wo);
+    const Rgb f = eval_pdf(ctx, wi, s.wo, s.pdf);
     if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.weight = eval(ctx, wi, s.wo) * (s.wo.z() / s.pdf);
+    s.weight = f * (s.wo.z() / s.pdf);
     return s;
   }
 

@@ -58,6 +58,32 @@ class RoughPlasticBsdf final : public Bsdf {
     return ps * m_distr.pdf_visible(wi, h) / (4.0f * wo.dot(h)) + (1.0f - ps) * wo.z() * kInvPi;
   }
 
+  // eval() and pdf() sharing h, D(h), G1(wi, h) and T(cos wi); the same expressions in
+  // the same order, so the values are those of the two separate calls.
+  Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const override {
+    pdf_out = 0.0f;
+    if (wi.z() <= 0.0f || wo.z() <= 0.0f) return Rgb::Zero();
+    const Vec3 h = (wi + wo).normalized();
+    const float t_wi = m_t_ext.eval(wi.z());
+    const float ps = prob_specular_from_t(t_wi);
+    Rgb f = Rgb::Zero();
+    const float d = m_distr.D(h);
+    float pdf_visible = 0.0f;  // Heitz 2014, Eq. 17; 0 where D is
+    if (d > 0.0f) {
+      const float g1_wi = m_distr.G1(wi, h);
+      pdf_visible = g1_wi * std::max(0.0f, wi.dot(h)) * d / wi.z();
+      const float fr = fresnel_dielectric(wi.dot(h), m_eta).reflectance;
+      // Walter 2007, Eq. 20.
+      f += detail::eval_or(m_ks, ctx.uv) * (fr * d * (g1_wi * m_distr.G1(wo, h)) / (4.0f * wi.z() * wo.z()));
+    }
+    const Rgb rho = m_kd->eval(ctx.uv);
+    const Rgb rho_eff = m_nonlinear ? Rgb(rho / (1.0f - rho * m_fdr_int)) : Rgb(rho / (1.0f - m_fdr_int));
+    f += rho_eff * (kInvPi * t_wi * m_t_ext.eval(wo.z()) / sqr(m_eta));
+    // Walter 2007, Eq. 14 for the specular lobe, cosine density for the diffuse one.
+    pdf_out = ps * pdf_visible / (4.0f * wo.dot(h)) + (1.0f - ps) * wo.z() * kInvPi;
+    return f;
+  }
+
   std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float u_lobe,
                                    const Vec2& u) const override {
     if (wi.z() <= 0.0f) return std::nullopt;
@@ -71,9 +97,9 @@ class RoughPlasticBsdf final : public Bsdf {
       s.lobe = kDiffuseReflection;
     }
     if (s.wo.z() <= 0.0f) return std::nullopt;
-    s.pdf = pdf(ctx, wi, s.wo);
+    const Rgb f = eval_pdf(ctx, wi, s.wo, s.pdf);
     if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.weight = eval(ctx, wi, s.wo) * (s.wo.z() / s.pdf);
+    s.weight = f * (s.wo.z() / s.pdf);
     return s;
   }
 
@@ -86,8 +112,9 @@ class RoughPlasticBsdf final : public Bsdf {
   bool has_texture() const override { return detail::varies(m_kd) || detail::varies(m_ks); }
 
  private:
-  float prob_specular(float cos_i) const {
-    const float r = 1.0f - m_t_ext.eval(cos_i);
+  float prob_specular(float cos_i) const { return prob_specular_from_t(m_t_ext.eval(cos_i)); }
+  float prob_specular_from_t(float t_cos_i) const {
+    const float r = 1.0f - t_cos_i;
     const float a = r * m_spec_weight, b = (1.0f - r) * (1.0f - m_spec_weight);
     return (a + b) > 0.0f ? a / (a + b) : 0.0f;
   }

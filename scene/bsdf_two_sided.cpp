@@ -21,6 +21,9 @@ class TwoSidedBsdf final : public Bsdf {
   float pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo) const override {
     return wi.z() < 0.0f ? m_inner->pdf(ctx, flip(wi), flip(wo)) : m_inner->pdf(ctx, wi, wo);
   }
+  Rgb eval_pdf(const BsdfContext& ctx, const Vec3& wi, const Vec3& wo, float& pdf_out) const override {
+    return wi.z() < 0.0f ? m_inner->eval_pdf(ctx, flip(wi), flip(wo), pdf_out) : m_inner->eval_pdf(ctx, wi, wo, pdf_out);
+  }
   std::optional<BsdfSample> sample(const BsdfContext& ctx, const Vec3& wi, float u_lobe,
                                    const Vec2& u) const override {
     if (wi.z() >= 0.0f) return m_inner->sample(ctx, wi, u_lobe, u);

@@ -41,9 +41,12 @@ Rgb fresnel_conductor(float cos_i, const Rgb& eta, const Rgb& k) {
     const C n2 = n * n;
     // n cos_t = sqrt(n^2 - sin_i^2) (Snell with a complex index).
     const C n_cos_t = std::sqrt(n2 - si2);
-    const C rs = (ci - n_cos_t) / (ci + n_cos_t);
-    const C rp = (n2 * ci - n_cos_t) / (n2 * ci + n_cos_t);
-    out[c] = float(0.5 * (std::norm(rs) + std::norm(rp)));
+    // |rs|^2 and |rp|^2 as ratios of squared moduli, |a / b|^2 = |a|^2 / |b|^2: the same
+    // quantities without a complex division (libgcc's __divdc3, with its scaling and
+    // NaN recovery, cost more than the rest of this function).
+    const double rs2 = std::norm(ci - n_cos_t) / std::norm(ci + n_cos_t);
+    const double rp2 = std::norm(n2 * ci - n_cos_t) / std::norm(n2 * ci + n_cos_t);
+    out[c] = float(0.5 * (rs2 + rp2));
   }
   return out;
 }

@@ -14,54 +14,6 @@ Microfacet::Microfacet(MicrofacetType type, float alpha_u, float alpha_v)
   m_alpha_v = std::max(m_alpha_v, 1e-4f);
 }
 
-float Microfacet::D(const Vec3& m) const {
-  const float cz = m.z();
-  if (cz <= 0.0f) return 0.0f;
-  const float cz2 = cz * cz;
-  const float ax = m.x() / m_alpha_u, ay = m.y() / m_alpha_v;
-  // x^2/au^2 + y^2/av^2 = tan^2(theta) * (cos^2 phi / au^2 + sin^2 phi / av^2) * cos^2 theta
-  const float e = ax * ax + ay * ay;
-  float d;
-  if (m_type == MicrofacetType::beckmann) {
-    // Walter 2007, Eq. 25 (anisotropic form: Heitz 2014, Eq. 84).
-    d = std::exp(-e / cz2) / (kPi * m_alpha_u * m_alpha_v * cz2 * cz2);
-  } else {
-    // Walter 2007, Eq. 33 (anisotropic form: Heitz 2014, Eq. 85).
-    const float t = e + cz2;
-    d = 1.0f / (kPi * m_alpha_u * m_alpha_v * t * t);
-  }
-  return d;
-}
-
-float Microfacet::lambda(const Vec3& w) const {
-  const float cz2 = w.z() * w.z();
-  if (cz2 <= 0.0f) return kInfinity;
-  // alpha_o^2 tan^2 theta (Heitz 2014, Eq. 80): projected roughness along w's azimuth.
-  const float a2t2 = (sqr(w.x() * m_alpha_u) + sqr(w.y() * m_alpha_v)) / cz2;
-  if (a2t2 <= 0.0f) return 0.0f;
-  if (m_type == MicrofacetType::ggx) {
-    // Heitz 2014, Eq. 86.
-    return 0.5f * (-1.0f + std::sqrt(1.0f + a2t2));
-  }
-  // Heitz 2014, Eq. 83, with a = 1 / (alpha tan theta).
-  const double a = 1.0 / std::sqrt(double(a2t2));
-  return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPiD)));
-}
-
-float Microfacet::G1(const Vec3& w, const Vec3& m) const {
-  // Back-facing microfacets are not visible (Walter 2007, Eq. 27 chi+ term).
-  if (w.dot(m) * w.z() <= 0.0f) return 0.0f;
-  const float l = lambda(w);
-  return std::isfinite(l) ? 1.0f / (1.0f + l) : 0.0f;
-}
-
-float Microfacet::pdf_visible(const Vec3& wi, const Vec3& m) const {
-  const float cz = std::abs(wi.z());
-  if (cz == 0.0f) return 0.0f;
-  // Heitz 2014, Eq. 17 (distribution of visible normals).
-  return G1(wi, m) * std::max(0.0f, wi.dot(m)) * D(m) / cz;
-}
-
 Vec3 Microfacet::sample_visible(const Vec3& wi, const Vec2& u) const {
   return m_type == MicrofacetType::ggx ? sample_visible_ggx(wi, u) : sample_visible_beckmann(wi, u);
 }
@@ -86,6 +38,12 @@ Vec3 Microfacet::sample_visible_ggx(const Vec3& wi, const Vec2& u) const {
 }
 
 namespace {
+// erf^-1 evaluated in double. Boost's default policy promotes double arguments to long
+// double (x87), several times slower; the double-precision rational approximations are
+// accurate to a few double ulps, far below the float normals built from them.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+double erf_inv_double(double x) { return boost::math::erf_inv(x, DoublePolicy()); }
+
 // Visible slopes of the alpha = 1 Beckmann distribution seen from an incident direction
 // with cot(theta) = a, in the frame where the incident azimuth is 0. Slope x has the
 // density p(x) ~ max(0, a - x) exp(-x^2) (projected-area weighting of the slope
@@ -99,7 +57,7 @@ double sample_beckmann_slope_x(double a, double u) {
   // float precision.
   double hi = std::min(a, 6.0), lo = -6.0;
   const double target = u * cdf(hi);
-  double x = std::clamp(a > 1.0 ? boost::math::erf_inv(std::clamp(2.0 * u - 1.0, -0.999999, 0.999999)) : 0.0, lo, hi);
+  double x = std::clamp(a > 1.0 ? erf_inv_double(std::clamp(2.0 * u - 1.0, -0.999999, 0.999999)) : 0.0, lo, hi);
   for (int it = 0; it < 60; ++it) {
     const double f = cdf(x) - target;
     if (f > 0) hi = x; else lo = x;
@@ -126,7 +84,7 @@ Vec3 Microfacet::sample_visible_beckmann(const Vec3& wi, const Vec2& u) const {
   // 2. Sample visible slopes for the incident elevation (step 2).
   const double a = sin_t > 1e-12 ? double(ws.z()) / sin_t : 1e12;
   const double sx = sample_beckmann_slope_x(a, double(u.x()));
-  const double sy = boost::math::erf_inv(std::clamp(2.0 * double(u.y()) - 1.0, -1.0 + 1e-12, 1.0 - 1e-12));
+  const double sy = erf_inv_double(std::clamp(2.0 * double(u.y()) - 1.0, -1.0 + 1e-12, 1.0 - 1e-12));
   // 3. Rotate back to the incident azimuth, 4. unstretch, 5. slope -> normal.
   const double rx = cos_phi * sx - sin_phi * sy;
   const double ry = sin_phi * sx + cos_phi * sy;

@@ -14,6 +14,8 @@
 //    Distribution"), with a safeguarded Newton inversion of the slope CDF.
 #pragma once
 
+#include <cmath>
+
 #include "core/math.h"
 #include "scene/bsdfs.h"
 
@@ -45,5 +47,55 @@ class Microfacet {
   MicrofacetType m_type;
   float m_alpha_u, m_alpha_v;
 };
+
+// D, Lambda, G1 and pdf_visible are inline: the BSDFs' eval/pdf/sample call them several
+// times per path vertex.
+inline float Microfacet::D(const Vec3& m) const {
+  const float cz = m.z();
+  if (cz <= 0.0f) return 0.0f;
+  const float cz2 = cz * cz;
+  const float ax = m.x() / m_alpha_u, ay = m.y() / m_alpha_v;
+  // x^2/au^2 + y^2/av^2 = tan^2(theta) * (cos^2 phi / au^2 + sin^2 phi / av^2) * cos^2 theta
+  const float e = ax * ax + ay * ay;
+  float d;
+  if (m_type == MicrofacetType::beckmann) {
+    // Walter 2007, Eq. 25 (anisotropic form: Heitz 2014, Eq. 84).
+    d = std::exp(-e / cz2) / (kPi * m_alpha_u * m_alpha_v * cz2 * cz2);
+  } else {
+    // Walter 2007, Eq. 33 (anisotropic form: Heitz 2014, Eq. 85).
+    const float t = e + cz2;
+    d = 1.0f / (kPi * m_alpha_u * m_alpha_v * t * t);
+  }
+  return d;
+}
+
+inline float Microfacet::lambda(const Vec3& w) const {
+  const float cz2 = w.z() * w.z();
+  if (cz2 <= 0.0f) return kInfinity;
+  // alpha_o^2 tan^2 theta (Heitz 2014, Eq. 80): projected roughness along w's azimuth.
+  const float a2t2 = (sqr(w.x() * m_alpha_u) + sqr(w.y() * m_alpha_v)) / cz2;
+  if (a2t2 <= 0.0f) return 0.0f;
+  if (m_type == MicrofacetType::ggx) {
+    // Heitz 2014, Eq. 86.
+    return 0.5f * (-1.0f + std::sqrt(1.0f + a2t2));
+  }
+  // Heitz 2014, Eq. 83, with a = 1 / (alpha tan theta).
+  const double a = 1.0 / std::sqrt(double(a2t2));
+  return float(0.5 * (std::erf(a) - 1.0) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPiD)));
+}
+
+inline float Microfacet::G1(const Vec3& w, const Vec3& m) const {
+  // Back-facing microfacets are not visible (Walter 2007, Eq. 27 chi+ term).
+  if (w.dot(m) * w.z() <= 0.0f) return 0.0f;
+  const float l = lambda(w);
+  return std::isfinite(l) ? 1.0f / (1.0f + l) : 0.0f;
+}
+
+inline float Microfacet::pdf_visible(const Vec3& wi, const Vec3& m) const {
+  const float cz = std::abs(wi.z());
+  if (cz == 0.0f) return 0.0f;
+  // Heitz 2014, Eq. 17 (distribution of visible normals).
+  return G1(wi, m) * std::max(0.0f, wi.dot(m)) * D(m) / cz;
+}
 
 }  // namespace dp::scene

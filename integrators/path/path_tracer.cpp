@@ -22,14 +22,15 @@ Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const Bs
   if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
   const Vec3 wo_local = hit.shading.to_local(ds.wi);
   if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
-  const Rgb f = hit.bsdf->eval(ctx, wi_local, wo_local) * abs_cos_theta(wo_local);
+  float bsdf_pdf;  // pdf of sampling wo by the BSDF, for the MIS weight
+  const Rgb f = hit.bsdf->eval_pdf(ctx, wi_local, wo_local, bsdf_pdf) * abs_cos_theta(wo_local);
   if (is_black(f)) return Rgb::Zero();
   ++counters.shadow_rays;
   const bool blocked = std::isfinite(ds.dist) ? m_scene.occluded(m_scene.spawn_segment(hit, ds.p))
                                               : m_scene.occluded(m_scene.spawn_ray(hit, ds.wi));
   if (blocked) return Rgb::Zero();
   const float light_pdf = pmf * ds.pdf;
-  const float weight = ds.delta ? 1.0f : power_heuristic(light_pdf, hit.bsdf->pdf(ctx, wi_local, wo_local));
+  const float weight = ds.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
   return f * ds.radiance * (weight / light_pdf);
 }
 
@@ -40,11 +41,13 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, PathCounters& count
   float prev_bsdf_pdf = 0.0f;
   Vec3 prev_p = primary.o;
   const scene::EnvironmentEmitter* env = m_scene.environment();
+  scene::SurfaceHit hit_storage;  // filled in place by every intersection (no optional copy)
+  const scene::SurfaceHit* const hit = &hit_storage;
   for (int depth = 1; depth <= m_max_depth; ++depth) {
-    const auto hit = m_scene.intersect(ray);
+    const bool found = m_scene.intersect(ray, hit_storage);
     ++counters.rays;
     const bool hide = depth == 1 && m_settings.hide_emitters;
-    if (!hit) {
+    if (!found) {
       if (env && !hide) {
         const Rgb Le = env->eval_direction(ray.d);
         float w = 1.0f;

@@ -67,6 +67,38 @@ TEST_CASE("sample() weight and pdf agree with eval() and pdf()", "[unit]") {
       }
 }
 
+// eval_pdf() is a fused eval() + pdf() (next-event estimation with MIS needs both); the
+// overrides reuse h, D, G1(wi), pow() and must return the same two values. They are
+// written as the same expressions in the same order, so the only allowed difference is
+// a compiler's contraction into FMAs (a few ulps).
+TEST_CASE("eval_pdf() returns eval() and pdf()", "[unit]") {
+  for (const auto& c : test::bsdf_cases())
+    for (TransportMode mode : {TransportMode::radiance, TransportMode::importance})
+      for (const Vec3& wi : test::incident_dirs(c)) {
+        BsdfContext ctx;
+        ctx.mode = mode;
+        ctx.uv = Vec2(0.3f, 0.7f);
+        core::Rng rng(17, 4);
+        int bad = 0, nonzero = 0;
+        for (int k = 0; k < 2000; ++k) {
+          // Directions from the BSDF's own sampler (where its values are large) and
+          // uniform ones (tails, back side, below the horizon).
+          Vec3 wo = core::warp::square_to_uniform_sphere(rng.uniform2());
+          if (k % 2 == 0)
+            if (const auto s = c.bsdf->sample(ctx, wi, rng.uniform(), rng.uniform2()); s && !s->is_delta()) wo = s->wo;
+          float p_fused = -1.0f;
+          const Rgb f_fused = c.bsdf->eval_pdf(ctx, wi, wo, p_fused);
+          const float p = c.bsdf->pdf(ctx, wi, wo);
+          const Rgb f = c.bsdf->eval(ctx, wi, wo);
+          if (p > 0.0f) ++nonzero;
+          if (!close(p_fused, p, 1e-5f, 0.0f) || !close(f_fused, f, 1e-5f, 0.0f)) ++bad;
+        }
+        INFO(c.name << " wi=(" << wi.transpose() << ") mode " << int(mode) << ": " << bad << " mismatches");
+        CHECK(bad == 0);
+        if (!c.bsdf->is_purely_delta()) CHECK(nonzero > 0);  // the comparison was not vacuous
+      }
+}
+
 TEST_CASE("delta lobes: eval and pdf are zero, directions are exact", "[unit]") {
   BsdfContext ctx;
   const Vec3 wi = test::dir_from(0.6f, 0.8f);
