@@ -224,9 +224,11 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
     const Vec3 wo_l = ov.hit.shading.to_local(dir);
     if (!pathspace::consistent_side(ov.hit, dir, wo_l.z())) return ShiftStatus::zero_contribution;
     if (j == k) {
-      const double pdf = double(ov.hit.bsdf->pdf(ctx, ov.wi, wo_l));
+      float p = 0.0f;
+      const Rgb f = ov.hit.bsdf->eval_pdf(ctx, ov.wi, wo_l, p) * abs_cos_theta(wo_l);
+      const double pdf = double(p);
       if (!(pdf > 0.0)) return ShiftStatus::zero_contribution;
-      set_scatter(ov, b, wo_l, dir, ov.hit.bsdf->eval(ctx, ov.wi, wo_l) * abs_cos_theta(wo_l), pdf);
+      set_scatter(ov, b, wo_l, dir, f, pdf);
       return ShiftStatus::ok;
     }
     // The same Dirac lobe (its value and probability depend on wi only); its direction

@@ -74,8 +74,9 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
       f = bs->weight * bs->pdf;
       pdf = double(bs->pdf);
     } else {
-      f = bsdf.eval(ctx, ov.wi, b.wo) * abs_cos_theta(b.wo);
-      pdf = double(bsdf.pdf(ctx, ov.wi, b.wo));
+      float p = 0.0f;
+      f = bsdf.eval_pdf(ctx, ov.wi, b.wo, p) * abs_cos_theta(b.wo);
+      pdf = double(p);
     }
     if (!(pdf > 0.0)) return ShiftStatus::zero_contribution;
     set_scatter(ov, b, b.wo, b.wo_world, f, pdf);
@@ -99,9 +100,11 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
     }
     const Vec3 wo_l = ov.hit.shading.to_local(wo_w);
     if (!pathspace::consistent_side(ov.hit, wo_w, wo_l.z())) return ShiftStatus::zero_contribution;
-    const double pdf = double(bsdf.pdf(ctx, ov.wi, wo_l));
+    float p = 0.0f;
+    const Rgb f = bsdf.eval_pdf(ctx, ov.wi, wo_l, p) * abs_cos_theta(wo_l);
+    const double pdf = double(p);
     if (!(pdf > 0.0) || !(J > 0.0)) return ShiftStatus::zero_contribution;
-    set_scatter(ov, b, wo_l, wo_w, bsdf.eval(ctx, ov.wi, wo_l) * abs_cos_theta(wo_l), pdf);
+    set_scatter(ov, b, wo_l, wo_w, f, pdf);
     Vertex nv = bn;
     if (nv.kind == VertexKind::surface) nv.wi = nv.hit.shading.to_local(-wo_w);
     nv.emission = pathspace::emitted(m_scene, nv, -wo_w);
@@ -140,8 +143,9 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
       J = refraction_jacobian(wi, wo, wi_o, wo_o, double(b.eta));
     }
     wo_l = wo_o.normalized().cast<float>();
-    f = bsdf.eval(ctx, ov.wi, wo_l) * abs_cos_theta(wo_l);
-    pdf = double(bsdf.pdf(ctx, ov.wi, wo_l));
+    float p = 0.0f;
+    f = bsdf.eval_pdf(ctx, ov.wi, wo_l, p) * abs_cos_theta(wo_l);
+    pdf = double(p);
     out.step[size_t(k)] = StepKind::half_vector;
   }
   if (!(pdf > 0.0) || !(J > 0.0)) return ShiftStatus::zero_contribution;
@@ -205,8 +209,9 @@ void ReconnectionShift::shift_nee(const Path& base, int k, ShiftResult& out) con
   auto finish = [&](double J, StepKind kind) {
     ol.wo = ov.hit.shading.to_local(ol.w);
     if (!pathspace::consistent_side(ov.hit, ol.w, ol.wo.z())) return fail(ShiftStatus::zero_contribution);
-    ol.f_cos = bsdf.eval(ctx, ov.wi, ol.wo) * abs_cos_theta(ol.wo);
-    ol.bsdf_pdf = ol.delta ? 0.0 : double(bsdf.pdf(ctx, ov.wi, ol.wo));
+    float p = 0.0f;
+    ol.f_cos = bsdf.eval_pdf(ctx, ov.wi, ol.wo, p) * abs_cos_theta(ol.wo);
+    ol.bsdf_pdf = ol.delta ? 0.0 : double(p);
     ol.valid = true;
     out.nee_jacobian[size_t(k)] = J;
     out.nee_step[size_t(k)] = kind;

@@ -35,8 +35,9 @@ void PathBuilder::sample_light(Vertex& v, LightSample& ls, float u_light, const 
     return;
   }
   const auto ctx = radiance_context(v.hit);
-  ls.f_cos = v.hit.bsdf->eval(ctx, v.wi, ls.wo) * abs_cos_theta(ls.wo);
-  ls.bsdf_pdf = ds.delta ? 0.0 : double(v.hit.bsdf->pdf(ctx, v.wi, ls.wo));
+  float p = 0.0f;
+  ls.f_cos = v.hit.bsdf->eval_pdf(ctx, v.wi, ls.wo, p) * abs_cos_theta(ls.wo);
+  ls.bsdf_pdf = ds.delta ? 0.0 : double(p);
   // Visibility matters for the MIS weight of shifted paths (the BSDF strategy cannot
   // produce an occluded light point) even when this sample's value is zero.
   if ((is_black(ls.f_cos) || is_black(ls.radiance)) && !(ls.bsdf_pdf > 0.0)) return;
