@@ -127,6 +127,19 @@ void report(const std::string& name, const BlockStats& s) {
   std::printf("%s", s.map.c_str());
 }
 
+// A 1280x720 Bitterli scene rendered at 320x180 (factor 4), 20 x 20 render-pixel
+// blocks, at the file's max_depth - 1 (Tungsten's max_bounces; see the veach-ajar test).
+BlockStats compare_veach_scene(const std::string& name) {
+  const fs::path p = shared_scenes() / name / "scene.xml";
+  MitsubaOptions opt;
+  opt.parameters = {{"resx", "320"}, {"resy", "180"}};
+  const auto scene = load_scene_mitsuba(p.string(), opt);
+  const core::Image ref = core::read_exr((shared_scenes() / name / "TungstenRender.exr").string());
+  const BlockStats s = compare(*scene, ref, 4, 20, 32, 16, scene->integrator_defaults().max_depth - 1);
+  report(name, s);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("mitsuba: every shared scene loads", "[unit]") {
@@ -174,32 +187,14 @@ TEST_CASE("mitsuba: cornell-box agrees with the Tungsten reference", "[slow]") {
 // this case may fail.
 TEST_CASE("mitsuba: veach-ajar agrees with the Tungsten reference", "[slow][!mayfail]") {
   if (!have_shared()) return;
-  {
-    // 1280x720 -> 320x180 (factor 4); 20 x 20 render-pixel blocks.
-    const fs::path p = shared_scenes() / "veach-ajar" / "scene.xml";
-    MitsubaOptions opt;
-    opt.parameters = {{"resx", "320"}, {"resy", "180"}};
-    const auto scene = load_scene_mitsuba(p.string(), opt);
-    const core::Image ref = core::read_exr((shared_scenes() / "veach-ajar" / "TungstenRender.exr").string());
-    const BlockStats s = compare(*scene, ref, 4, 20, 32, 16, scene->integrator_defaults().max_depth - 1);
-    report("veach-ajar", s);
-    CHECK(s.over3 <= s.blocks / 20);
-  }
+  const BlockStats s = compare_veach_scene("veach-ajar");
+  CHECK(s.over3 <= s.blocks / 20);
 }
 
 // The same depth rule: veach-mis's file asks for 3 segments, Tungsten rendered 2 (direct
 // light only); at the file's 3 the extra bounce put 126 of 144 blocks off.
 TEST_CASE("mitsuba: veach-mis agrees with the Tungsten reference", "[slow]") {
   if (!have_shared()) return;
-  {
-    // 1280x720 -> 320x180 (factor 4); 20 x 20 render-pixel blocks.
-    const fs::path p = shared_scenes() / "veach-mis" / "scene.xml";
-    MitsubaOptions opt;
-    opt.parameters = {{"resx", "320"}, {"resy", "180"}};
-    const auto scene = load_scene_mitsuba(p.string(), opt);
-    const core::Image ref = core::read_exr((shared_scenes() / "veach-mis" / "TungstenRender.exr").string());
-    const BlockStats s = compare(*scene, ref, 4, 20, 32, 16, scene->integrator_defaults().max_depth - 1);
-    report("veach-mis", s);
-    CHECK(s.over3 <= s.blocks / 20);
-  }
+  const BlockStats s = compare_veach_scene("veach-mis");
+  CHECK(s.over3 <= s.blocks / 20);
 }
