@@ -15,21 +15,13 @@
 
 #include "core/rng.h"
 #include "gradients/jacobians.h"
+#include "tests/support/direction_chart.h"
 
 using namespace dp;
 using namespace dp::gradients;
 
 namespace {
-struct Chart {
-  Vec3d w, s, t;
-  explicit Chart(const Vec3d& dir) : w(dir.normalized()) {
-    const Vec3d a = std::abs(w.x()) > 0.9 ? Vec3d(0, 1, 0) : Vec3d(1, 0, 0);
-    s = w.cross(a).normalized();
-    t = w.cross(s);
-  }
-  Vec3d at(double a, double b) const { return (w + a * s + b * t).normalized(); }
-  Eigen::Vector2d coords(const Vec3d& v) const { return {v.normalized().dot(s), v.normalized().dot(t)}; }
-};
+using Chart = test::DirectionChart;
 
 struct Surface {  // plane (n, point) or sphere (center, radius)
   bool sphere = false;

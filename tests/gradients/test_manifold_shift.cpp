@@ -21,6 +21,7 @@
 #include "scene/bsdfs.h"
 #include "scene/loader.h"
 #include "tests/support/test_scenes.h"
+#include "tests/support/direction_chart.h"
 
 using namespace dp;
 using gradients::StepKind;
@@ -29,16 +30,7 @@ namespace {
 scene::BsdfPtr mirror() { return scene::make_mirror(scene::constant_texture(Rgb::Constant(0.9f))); }
 scene::BsdfPtr glass() { return scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx); }
 
-struct Chart {
-  Vec3d w, s, t;
-  explicit Chart(const Vec3d& dir) : w(dir.normalized()) {
-    const Vec3d a = std::abs(w.x()) > 0.9 ? Vec3d(0, 1, 0) : Vec3d(1, 0, 0);
-    s = w.cross(a).normalized();
-    t = w.cross(s);
-  }
-  Vec3d at(double a, double b) const { return (w + a * s + b * t).normalized(); }
-  Eigen::Vector2d coords(const Vec3d& v) const { return {v.normalized().dot(s), v.normalized().dot(t)}; }
-};
+using Chart = test::DirectionChart;
 
 manifold::Chain reversed(const manifold::Chain& c) {
   manifold::Chain r = c;

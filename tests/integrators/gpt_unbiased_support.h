@@ -13,6 +13,22 @@
 namespace dp::test {
 constexpr int kRes = 16, kBlock = 4, kRuns = 10;
 
+// One quiet 2-thread render with integrator settings `set` (key, value).
+inline integrators::RenderResult render_with(const scene::Scene& s, const std::string& integrator, int spp,
+                                             uint64_t seed, int max_depth,
+                                             const std::vector<std::pair<std::string, std::string>>& set = {}) {
+  integrators::Settings settings;
+  for (const auto& kv : set) settings.set(kv.first, kv.second);
+  auto in = integrators::make_integrator(integrator, settings);
+  integrators::RenderOptions opt;
+  opt.spp = spp;
+  opt.seed = seed;
+  opt.threads = 2;
+  opt.max_depth = max_depth;
+  opt.quiet = true;
+  return in->render(s, opt);
+}
+
 inline const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {
   for (const auto& l : r.layers)
     if (l.name == name) return l.image;

@@ -14,23 +14,15 @@
 #include "integrators/integrator.h"
 #include "pathspace/measure.h"
 #include "scene/bsdfs.h"
+#include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;
 
 namespace {
 integrators::RenderResult render_gpt(const scene::Scene& s, int spp, uint64_t seed, int max_depth,
-                                     const std::string& set = "") {
-  integrators::Settings settings;
-  if (!set.empty()) settings.set(set.substr(0, set.find('=')), set.substr(set.find('=') + 1));
-  auto gpt = integrators::make_integrator("gpt", settings);
-  integrators::RenderOptions opt;
-  opt.spp = spp;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return gpt->render(s, opt);
+                                     const std::vector<std::pair<std::string, std::string>>& set = {}) {
+  return test::render_with(s, "gpt", spp, seed, max_depth, set);
 }
 const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {
   for (const auto& l : r.layers)
@@ -205,7 +197,7 @@ TEST_CASE("G-PT skips the half-vector machinery on scenes without glossy or spec
                                     scene::make_two_sided(scene::make_conductor(
                                         0.05f, 0.05f, scene::MicrofacetType::ggx, scene::ConductorFresnel{})),
                                     8);
-  const auto r2 = render_gpt(*mirror, 4, 2, 6, "shift_threshold=0.1");
+  const auto r2 = render_gpt(*mirror, 4, 2, 6, {{"shift_threshold", "0.1"}});
   REQUIRE(r2.stats.get("gpt.step.half_vector.attempted") > 0);
   REQUIRE(r2.stats.get("gpt.step.dirac.attempted") > 0);
 }

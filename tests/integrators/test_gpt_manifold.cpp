@@ -35,21 +35,6 @@ const std::vector<std::pair<std::string, std::string>> kManifoldAll = {{"shift",
 const std::vector<std::pair<std::string, std::string>> kManifoldAlways = {{"shift", "manifold"},
                                                                           {"manifold_walk", "always"}};
 
-integrators::RenderResult render_once(const scene::Scene& s, const std::string& integrator, int spp, uint64_t seed,
-                                      int max_depth = 5, bool all_chains = false, bool walk_always = false) {
-  integrators::Settings settings;
-  if (integrator == "gpt") settings.set("shift", "manifold");
-  if (all_chains) settings.set("manifold_chains", "all");
-  if (walk_always) settings.set("manifold_walk", "always");
-  auto in = integrators::make_integrator(integrator, settings);
-  integrators::RenderOptions opt;
-  opt.spp = spp;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return in->render(s, opt);
-}
 
 // Furnace sphere (as test_scenes.h) with a perfect mirror ball inside.
 std::unique_ptr<scene::Scene> mirror_furnace(int resolution) {
@@ -78,7 +63,7 @@ TEST_CASE("G-PT with the manifold shift: gradients and L2 mean agree with PT (mi
   auto mirror = scene::make_mirror(scene::constant_texture(Rgb::Constant(0.9f)));
   auto glass = scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx);
   const auto s = lit_box(mirror, glass, kRes);
-  const auto probe = render_once(*s, "gpt", 4, 999, 5, true);
+  const auto probe = render_with(*s, "gpt", 4, 999, 5, kManifoldAll);
   const int64_t walks = probe.stats.get("gpt.manifold.converged");
   const Blocks g = stats(*s, "gpt", 16, 3000, kManifoldAll), p = stats(*s, "path", 64, 4000);
   const int tests = int(g.grad.size());
@@ -105,7 +90,7 @@ TEST_CASE("G-PT with the manifold shift: gradients and L2 mean agree with PT (mi
 TEST_CASE("G-PT with the manifold shift in a furnace with a mirror ball: L2 = 1, gradients 0", "[stat]") {
   const auto s = mirror_furnace(kRes);
   constexpr int kDepth = 64;  // truncation bias 0.5^64 (Russian roulette after 5 segments)
-  const auto probe = render_once(*s, "gpt", 2, 77, kDepth, false, true);
+  const auto probe = render_with(*s, "gpt", 2, 77, kDepth, kManifoldAlways);
   const int64_t walks = probe.stats.get("gpt.manifold.converged");
   REQUIRE(probe.stats.get("gpt.nan_dropped") == 0);
   const Blocks g = stats(*s, "gpt", 32, 5000, kManifoldAlways, kDepth);
