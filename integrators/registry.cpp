@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "integrators/integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
+#include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
 
 namespace dp::integrators {
@@ -24,6 +25,7 @@ const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
+      {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
   };
   return kRegistry;
 }

@@ -1,0 +1,21 @@
+// Settings of primary-sample-space MLT (`--integrator mlt`). Each key is read with its
+// default and documentation in mlt_settings.cpp and written to the sidecar.
+#pragma once
+
+#include <cstdint>
+
+#include "integrators/settings.h"
+
+namespace dp::integrators {
+
+struct MltSettings {
+  double large_step_prob = 0.3;  // probability of a large step (Mitsuba PSSMLT default)
+  int64_t bootstrap = 100000;    // independent samples estimating the normalisation b
+  int chains = 0;                // independent chains; 0 = 4 per thread
+  int rr_depth = 5;              // Russian roulette after this many segments (as PT)
+  bool nee = true;               // next-event estimation with MIS inside each path (as PT)
+
+  static MltSettings read(Settings& s);
+};
+
+}  // namespace dp::integrators

@@ -1,0 +1,137 @@
+// PSSMLT (`--integrator mlt`) against the reference path tracer on a small lit box with
+// a glossy sphere. K independent MLT renders (fixed seeds) and K independent PT renders:
+// their run-to-run spread gives the standard error of each (MLT's includes the bootstrap
+// estimate of b, startup and correlation between mutations -- runs are independent, so
+// the sample variance over runs is unbiased whatever the chain's autocorrelation).
+// Welch t-tests: the image mean (alpha = 1%) and every 8x8 block (Sidak-corrected to a
+// 1% family-wise level). An MLT image scaled by 1.1 must be rejected. Also: a render is
+// deterministic for a fixed seed and thread count.
+#include <boost/math/distributions/students_t.hpp>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "integrators/integrator.h"
+#include "scene/bsdfs.h"
+#include "tests/support/test_scenes.h"
+
+using namespace dp;
+
+namespace {
+constexpr int kRes = 32, kBlock = 8, kRuns = 10;
+
+integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, uint64_t seed) {
+  integrators::Settings settings;
+  auto in = integrators::make_integrator(name, settings);
+  integrators::RenderOptions opt;
+  opt.spp = spp;
+  opt.seed = seed;
+  opt.threads = 2;
+  opt.max_depth = 6;
+  opt.quiet = true;
+  return in->render(s, opt);
+}
+
+// Per run: image mean (channel sum) followed by the block means.
+std::vector<std::vector<double>> run_stats(const scene::Scene& s, const std::string& name, int spp, uint64_t seed0,
+                                           double* acceptance = nullptr) {
+  const int nb = kRes / kBlock;
+  std::vector<std::vector<double>> out(size_t(1 + nb * nb));
+  for (int r = 0; r < kRuns; ++r) {
+    const auto res = render(s, name, spp, seed0 + uint64_t(r));
+    if (acceptance) {
+      const auto& st = res.stats;
+      *acceptance = double(st.get("mlt.accepted_large") + st.get("mlt.accepted_small")) /
+                    double(st.get("mlt.large_steps") + st.get("mlt.small_steps"));
+    }
+    const core::Image& img = res.layers[0].image;
+    double all = 0;
+    for (int by = 0; by < nb; ++by)
+      for (int bx = 0; bx < nb; ++bx) {
+        double sum = 0;
+        for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
+          for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) sum += double(img(x, y).sum());
+        out[size_t(1 + by * nb + bx)].push_back(sum / (kBlock * kBlock));
+        all += sum;
+      }
+    out[0].push_back(all / (kRes * kRes));
+  }
+  return out;
+}
+
+struct Moments {
+  double mean, var;
+};
+Moments moments(const std::vector<double>& v, double scale) {
+  double m = 0, s2 = 0;
+  for (double x : v) m += scale * x;
+  m /= double(v.size());
+  for (double x : v) s2 += (scale * x - m) * (scale * x - m);
+  return {m, s2 / double(v.size() - 1)};
+}
+
+// |t| / (two-sided critical value at level alpha) of a Welch test of equal means.
+double welch_ratio(const Moments& a, const Moments& b, double alpha) {
+  const double va = a.var / kRuns, vb = b.var / kRuns;
+  if (!(va + vb > 0)) return a.mean == b.mean ? 0.0 : std::numeric_limits<double>::infinity();
+  const double t = (a.mean - b.mean) / std::sqrt(va + vb);
+  const double dof = (va + vb) * (va + vb) / (va * va / (kRuns - 1) + vb * vb / (kRuns - 1));  // Welch-Satterthwaite
+  return std::abs(t) / boost::math::quantile(boost::math::complement(boost::math::students_t(dof), alpha / 2));
+}
+
+// Largest ratio over the image-mean test (alpha = 1%) and the block tests (Sidak, 1% family).
+double worst_ratio(const std::vector<std::vector<double>>& mlt, const std::vector<std::vector<double>>& pt,
+                   double scale, double* mean_ratio) {
+  *mean_ratio = welch_ratio(moments(mlt[0], scale), moments(pt[0], 1.0), 0.01);
+  const size_t blocks = mlt.size() - 1;
+  const double alpha = 1.0 - std::pow(1.0 - 0.01, 1.0 / double(blocks));
+  double worst = *mean_ratio;
+  for (size_t i = 1; i < mlt.size(); ++i)
+    worst = std::max(worst, welch_ratio(moments(mlt[i], scale), moments(pt[i], 1.0), alpha));
+  return worst;
+}
+
+std::unique_ptr<scene::Scene> glossy_box(int res) {
+  return test::lit_box(scene::make_two_sided(scene::make_conductor(0.2f, 0.2f, scene::MicrofacetType::ggx,
+                                                                   scene::ConductorFresnel{},
+                                                                   scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f)))),
+                       nullptr, res);
+}
+}  // namespace
+
+TEST_CASE("mlt: PSSMLT agrees with the path tracer (image mean and 8x8 blocks)", "[stat]") {
+  const auto s = glossy_box(kRes);
+  double acceptance = 0;
+  const auto mlt = run_stats(*s, "mlt", 256, 1000, &acceptance);
+  const auto pt = run_stats(*s, "path", 64, 2000);
+  double mean_ratio = 0;
+  const double r = worst_ratio(mlt, pt, 1.0, &mean_ratio);
+  const Moments m = moments(mlt[0], 1.0), p = moments(pt[0], 1.0);
+  INFO("image mean: MLT " << m.mean << " +- " << std::sqrt(m.var / kRuns) << ", PT " << p.mean << " +- "
+                          << std::sqrt(p.var / kRuns) << "; mean |t|/crit " << mean_ratio
+                          << ", worst over blocks " << r << "; acceptance " << acceptance);
+  REQUIRE(acceptance > 0.0);
+  REQUIRE(r < 1.0);
+  // The same tests reject an MLT image scaled by 1.1 (so they can fail).
+  double scaled_mean_ratio = 0;
+  const double r_wrong = worst_ratio(mlt, pt, 1.1, &scaled_mean_ratio);
+  INFO("x1.1: mean |t|/crit " << scaled_mean_ratio << ", worst " << r_wrong);
+  REQUIRE(scaled_mean_ratio > 1.0);
+  REQUIRE(r_wrong > 1.0);
+}
+
+TEST_CASE("mlt: a render is deterministic for a fixed seed and thread count", "[unit]") {
+  const auto s = glossy_box(16);
+  const auto a = render(*s, "mlt", 8, 7), b = render(*s, "mlt", 8, 7), c = render(*s, "mlt", 8, 8);
+  const core::Image &ia = a.layers[0].image, &ib = b.layers[0].image, &ic = c.layers[0].image;
+  bool same = true, differs = false;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      same &= (ia(x, y) == ib(x, y)).all();
+      differs |= !(ia(x, y) == ic(x, y)).all();
+    }
+  REQUIRE(same);
+  REQUIRE(differs);  // another seed gives another image (the comparison can fail)
+  REQUIRE(a.stats.get("mlt.mutations") == 8 * 16 * 16);
+  REQUIRE(a.stats.get("mlt.nan_dropped") == 0);
+}
