@@ -10,6 +10,10 @@ double metropolis_acceptance(double fx, double fy) {
   return std::min(1.0, fy / fx);  // Veach 1997, Eq. 11.4 with T(x -> y) = T(y -> x)
 }
 
+void kelemen_small_step(const KelemenKernel& kernel, std::vector<float>& u, core::Rng& rng) {
+  kernel.perturb_all(u, rng);
+}
+
 void ChainCounters::merge(const ChainCounters& o) {
   large += o.large;
   small += o.small;
@@ -25,30 +29,32 @@ double ChainCounters::acceptance_rate() const {
 }
 
 Chain::Chain(Target& target, const ChainOptions& options, uint64_t seed, uint64_t index)
-    : m_target(target), m_opt(options), m_rng(seed, core::mix64(0xC4A1'0000'0000ull + index)), m_stream(m_rng) {}
+    : m_target(target), m_opt(options), m_rng(seed, core::mix64(0xC4A1'0000'0000ull + index)) {}
 
 void Chain::start(const std::vector<float>& u) {
-  m_stream.clear();
-  m_stream.mutable_samples() = u;
-  m_value = m_target.evaluate(m_stream);
-  m_x = m_stream.samples();
+  pathspace::PrimarySampleStream stream(m_rng);
+  stream.mutable_samples() = u;
+  m_value = m_target.evaluate(stream);
+  m_x = stream.samples();
 }
 
 Step Chain::step() {
   Step s;
   s.current = m_value;
   s.large = m_rng.uniform_double() < m_opt.large_step_prob;
-  std::vector<float>& y = m_stream.mutable_samples();
+  pathspace::PrimarySampleStream stream(m_rng);  // lives only for this step (see chain.h)
+  std::vector<float>& y = stream.mutable_samples();
+  y.swap(m_y);  // reuse the proposal buffer's allocation
   if (s.large) {
-    m_stream.clear();
+    y.clear();
     ++m_counters.large;
   } else {
     y.assign(m_x.begin(), m_x.end());
-    m_opt.kernel.perturb_all(y, m_rng);
+    m_opt.small_step(m_opt.kernel, y, m_rng);
     ++m_counters.small;
   }
-  m_stream.rewind();
-  s.proposed = m_target.evaluate(m_stream);  // coordinates past x's are drawn uniformly (chain.h)
+  stream.rewind();
+  s.proposed = m_target.evaluate(stream);  // coordinates past x's are drawn uniformly (chain.h)
   if (!s.proposed.valid()) {
     ++m_counters.invalid;
     s.a = 0.0;
@@ -58,10 +64,11 @@ Step Chain::step() {
   }
   s.accepted = s.a > 0.0 && m_rng.uniform_double() < s.a;
   if (s.accepted) {
-    m_x.swap(y);  // the stream's vector is overwritten by the next proposal
+    m_x.swap(y);  // y (now the old x) is overwritten by the next proposal
     m_value = s.proposed;
     ++(s.large ? m_counters.accepted_large : m_counters.accepted_small);
   }
+  m_y.swap(y);
   return s;
 }
 

@@ -27,10 +27,17 @@ using AcceptanceRule = double (*)(double fx, double fy);
 // min(1, f(y) / f(x)); 0 if f(y) is not positive and finite; 1 if f(x) == 0 < f(y).
 double metropolis_acceptance(double fx, double fy);
 
+// Applies one small step to every coordinate of u. The chain's acceptance assumes the
+// step is symmetric (K(x -> y) = K(y -> x)).
+using SmallStep = void (*)(const KelemenKernel& kernel, std::vector<float>& u, core::Rng& rng);
+void kelemen_small_step(const KelemenKernel& kernel, std::vector<float>& u, core::Rng& rng);
+
 struct ChainOptions {
   double large_step_prob = 0.3;  // Mitsuba PSSMLT default
   KelemenKernel kernel;
-  AcceptanceRule acceptance = metropolis_acceptance;  // replaced only by tests (wrong rules must be detected)
+  // Both replaced only by tests, which must detect a wrong rule or an asymmetric step.
+  AcceptanceRule acceptance = metropolis_acceptance;
+  SmallStep small_step = kelemen_small_step;
 };
 
 struct ChainCounters {
@@ -66,8 +73,11 @@ class Chain {
   Target& m_target;
   ChainOptions m_opt;
   core::Rng m_rng;
-  pathspace::PrimarySampleStream m_stream;  // holds the proposal y
-  std::vector<float> m_x;                   // the current state x
+  // No member refers to another member (a PrimarySampleStream bound to m_rng would
+  // dangle after a move): step() builds its stream on the stack around m_y, so a Chain
+  // is safe to move and copy (std::vector<Chain> may reallocate).
+  std::vector<float> m_y;  // the proposal y (kept to reuse its allocation)
+  std::vector<float> m_x;  // the current state x
   TargetValue m_value;                      // f(x) and its splat
   ChainCounters m_counters;
 };

@@ -55,7 +55,7 @@ struct Result {
   int k = 0;
 };
 
-Result run(mcmc::AcceptanceRule rule, uint64_t seed) {
+Result run(mcmc::AcceptanceRule rule, uint64_t seed, mcmc::SmallStep small_step = mcmc::kelemen_small_step) {
   constexpr int kKept = 40000;
   constexpr double kEta = 1e-4, kPLarge = 0.3;
   // b = mean f = mean w (g integrates to 1); f_max = 4 * 1.6.
@@ -69,6 +69,7 @@ Result run(mcmc::AcceptanceRule rule, uint64_t seed) {
   mcmc::ChainOptions opt;
   opt.large_step_prob = kPLarge;
   opt.acceptance = rule;
+  opt.small_step = small_step;
   mcmc::Chain chain(target, opt, seed, 0);
   chain.start({});
   std::vector<double> count(48, 0.0);
@@ -99,6 +100,14 @@ Result run(mcmc::AcceptanceRule rule, uint64_t seed) {
   return r;
 }
 
+// Deliberately asymmetric: the step length grows with the coordinate (x 0.2 at 0, x 4.2
+// near 1), so K(x -> y) != K(y -> x), and the chain omits the ratio K(y -> x) / K(x -> y)
+// that Metropolis-Hastings needs (Veach 1997, Eq. 11.3). The chain then lingers where
+// steps are short (small coordinates).
+void position_scaled_step(const mcmc::KelemenKernel& kernel, std::vector<float>& u, core::Rng& rng) {
+  for (float& x : u) x = mcmc::wrap_unit(double(x) + kernel.offset(rng) * (0.2 + 4.0 * double(x)));
+}
+
 double squared_acceptance(double fx, double fy) {
   const double a = mcmc::metropolis_acceptance(fx, fy);
   return a * a;  // deliberately wrong: min(1, f(y)/f(x))^2
@@ -113,5 +122,13 @@ TEST_CASE("mcmc: a PSS chain reproduces a known piecewise-constant target", "[st
   // The same test rejects a chain with a wrong acceptance probability.
   const Result wrong = run(squared_acceptance, 1);
   INFO("wrong rule: p-value " << wrong.p_value);
+  REQUIRE(wrong.p_value < 0.01);
+}
+
+TEST_CASE("mcmc: the known-target test rejects an asymmetric small step without its Q ratio", "[stat]") {
+  // Same chain, same thinning (the Doeblin bound only involves the unchanged large steps),
+  // only the small step is asymmetric. Watched: p-value < 1e-10 on this variant.
+  const Result wrong = run(mcmc::metropolis_acceptance, 1, position_scaled_step);
+  INFO("asymmetric step: p-value " << wrong.p_value);
   REQUIRE(wrong.p_value < 0.01);
 }
