@@ -1,9 +1,9 @@
 // `--integrator mlt`: primary-sample-space Metropolis light transport (Kelemen et al.
 // 2002, as Mitsuba's PSSMLT) on top of mcmc/. Scheduling: a bootstrap of independent
 // paths gives the normalisation b and the start states; `chains` independent chains
-// (seeded by (seed, chain index)) are distributed over the threads (chain c runs on
-// worker c mod threads, each worker owns one accumulation buffer), so the image is
-// deterministic for a given seed, thread count and chain count. --spp N means N
+// (seeded by (seed, chain index)) run in rounds (chain_scheduler.h), so the image is
+// deterministic for a given seed and chain count, whatever the thread count (the
+// default chain count, 4 per thread, does depend on it). --spp N means N
 // mutations per pixel on average (N W H in total); --time runs rounds of mutations until
 // the wall-clock budget is used. Image: b / (mutations per pixel) * splats, with
 // expected-value splatting of the current and the proposed state (Veach 1997, 11.3.3).
@@ -17,6 +17,8 @@ namespace dp::integrators {
 class MltIntegrator final : public Integrator {
  public:
   explicit MltIntegrator(Settings& settings) : m_settings(MltSettings::read(settings)), m_json(settings.to_json()) {}
+  // Settings given in code (tests: members that are not --set keys).
+  MltIntegrator(const MltSettings& settings, core::Json json) : m_settings(settings), m_json(std::move(json)) {}
   std::string name() const override { return "mlt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
 

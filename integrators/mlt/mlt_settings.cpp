@@ -10,6 +10,8 @@ MltSettings MltSettings::read(Settings& s) {
                                    "probability that a mutation is a large step (fresh uniform primary samples)");
   m.bootstrap = s.get_int("bootstrap", int(m.bootstrap),
                           "independent samples estimating the normalisation b and seeding the chains");
+  m.large_step_b = s.get_bool("large_step_b", m.large_step_b,
+                              "estimate b from the bootstrap and every large step's f (both are independent uniform samples)");
   m.chains = s.get_int("chains", m.chains,
                        "independent Markov chains (0: 4 per thread; the image then depends on --threads)");
   m.rr_depth = s.get_int("rr_depth", m.rr_depth, "Russian roulette only after this many path segments");

@@ -5,15 +5,19 @@
 #include <cstdint>
 
 #include "integrators/settings.h"
+#include "mcmc/chain.h"
 
 namespace dp::integrators {
 
 struct MltSettings {
   double large_step_prob = 0.3;  // probability of a large step (Mitsuba PSSMLT default)
   int64_t bootstrap = 100000;    // independent samples estimating the normalisation b
+  bool large_step_b = true;      // refine b with the large steps' f (independent uniform samples)
   int chains = 0;                // independent chains; 0 = 4 per thread
   int rr_depth = 5;              // Russian roulette after this many segments (as PT)
   bool nee = true;               // next-event estimation with MIS inside each path (as PT)
+  // Not a --set key: tests replace it by an asymmetric step the render must be rejected for.
+  mcmc::SmallStep small_step = mcmc::kelemen_small_step;
 
   static MltSettings read(Settings& s);
 };

@@ -1,0 +1,57 @@
+// Round-based scheduling of independent Markov chains, shared by the MCMC integrators
+// (`mlt`, `gdmlt`). A render runs rounds; in each round every chain runs up to `round`
+// mutations (its remaining quota in --spp mode) and records its splats in its own list;
+// after the round the lists are added to the image buffers in chain order. So:
+//  * the image depends on the seed and the chain count only, not on the thread count or
+//    on which thread ran which chain (sums are formed in one fixed order);
+//  * memory is one splat list per chain of about one round's splats, not one image per
+//    chain or per thread;
+//  * an interrupted render (Ctrl-C, or the --time budget) has run whole rounds on most
+//    chains: the whole image at fewer mutations, never a black region.
+// The caller owns the chains; `step` runs n mutations of chain c into `out`.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+// Splats of one chain in one round, in the order they were made.
+struct SplatList {
+  struct Splat {
+    int32_t layer, pixel;
+    Rgbd value;
+  };
+  std::vector<Splat> splats;
+  void add(int layer, int64_t pixel, const Rgbd& v) { splats.push_back({int32_t(layer), int32_t(pixel), v}); }
+};
+
+struct ChainSchedule {
+  int chains = 1;
+  int64_t total = 0;  // mutations in all (--spp mode); ignored when the options are timed
+  int64_t round = 1;  // mutations per chain per round
+  int layers = 1;     // accumulation buffers, each `pixels` long
+  int64_t pixels = 0;
+};
+
+struct ChainRunResult {
+  std::vector<std::vector<Rgbd>> sums;  // [layer][pixel]
+  std::vector<int64_t> mutations;      // per chain
+  int64_t total_mutations = 0;
+  int64_t rounds = 0;
+  bool interrupted = false;  // options.stop was set
+  bool partial = false;      // interrupted, or fewer mutations than `total` in --spp mode
+  double seconds = 0;
+};
+
+using ChainStep = std::function<void(int chain, int64_t n, SplatList& out, int thread)>;
+
+ChainRunResult run_chains(const ChainSchedule& schedule, const RenderOptions& options, const std::string& label,
+                          const ChainStep& step);
+
+}  // namespace dp::integrators
