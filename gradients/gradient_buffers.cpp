@@ -1,5 +1,7 @@
 #include "gradients/gradient_buffers.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace dp::gradients {
@@ -22,6 +24,11 @@ void GradientBuffers::merge(const GradientBuffers& o) {
     m_direct[i] += o.m_direct[i];
     m_count[i] += o.m_count[i];
   }
+}
+
+void GradientBuffers::clear() {
+  for (auto* v : {&m_primal, &m_dx, &m_dy, &m_direct}) std::fill(v->begin(), v->end(), Rgbd::Zero());
+  std::fill(m_count.begin(), m_count.end(), 0);
 }
 
 core::Image GradientBuffers::normalized(const std::vector<Rgbd>& sums) const {

@@ -27,6 +27,7 @@ class GradientBuffers {
   void add_direct(int x, int y, const Rgbd& v) { m_direct[index(x, y)] += v; }
   void add_samples(int x, int y, int64_t n) { m_count[index(x, y)] += n; }
   void merge(const GradientBuffers& other);
+  void clear();  // every sum and count back to zero (same size)
 
   int64_t samples(int x, int y) const { return m_count[index(x, y)]; }
   // Raw (unnormalized) sums, e.g. to inspect what one sample splatted.

@@ -22,8 +22,20 @@ int64_t ScheduleResult::spp_at(int x, int y) const {
   return tile_spp[size_t((y / kTileSize) * tiles_x + x / kTileSize)];
 }
 
+int progressive_pass_spp(int spp, int64_t pass) {
+  // Pass sizes 1, 1, 2, 4, ..., kMaxPassSpp, kMaxPassSpp, ... (the totals double until the
+  // cap), the last pass takes the rest. The cap bounds how long a Ctrl-C waits for the
+  // tiles in flight (one tile-pass) and the uneven sample counts an interruption leaves.
+  int64_t done = 0, size = 1;
+  for (int64_t p = 0; p < pass && done < spp; ++p) {
+    done += size;
+    if (p > 0) size = std::min<int64_t>(2 * size, kMaxPassSpp);
+  }
+  return int(std::clamp<int64_t>(int64_t(spp) - done, 0, size));
+}
+
 ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
-                         const TileFunction& fn) {
+                         const TileFunction& fn, const PassFunction& pass_done) {
   ScheduleResult result;
   const int tx = (width + kTileSize - 1) / kTileSize, ty = (height + kTileSize - 1) / kTileSize;
   result.tiles_x = tx;
@@ -40,17 +52,18 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
   result.tile_spp.assign(result.tiles.size(), 0);
   const bool timed = options.time_budget > 0;
   const int threads = resolve_threads(options);
-  const int pass_spp = timed ? 1 : std::max(1, options.spp);
-  const int64_t total_passes = timed ? 0 : 1;
+  const int spp = timed ? 1 : std::max(1, options.spp);
   core::Timer timer;
-  core::Progress progress(label, timed ? 1000 : int64_t(result.tiles.size()), options.quiet);
+  core::Progress progress(label, timed ? 1000 : int64_t(result.tiles.size()) * spp, options.quiet);
   std::atomic<bool> stop{false};
   auto should_stop = [&] {
     if (options.stop && options.stop->load()) return true;
     return timed && timer.seconds() >= options.time_budget;
   };
-  for (int64_t pass = 0; timed || pass < total_passes; ++pass) {
-    if (should_stop()) break;
+  for (int64_t pass = 0;; ++pass) {
+    const int pass_spp = timed ? 1 : progressive_pass_spp(spp, pass);
+    if (pass_spp == 0 || should_stop()) break;
+    std::atomic<int64_t> tiles_done{0};
     core::parallel_for(
         int64_t(result.tiles.size()), threads,
         [&](int64_t item, int thread) {
@@ -62,17 +75,19 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
           core::Rng rng(options.seed, core::mix64(uint64_t(pass) * 0x100000001b3ull + uint64_t(tile.index)));
           fn(tile, pass_spp, rng, thread);
           result.tile_spp[size_t(item)] += pass_spp;  // each tile index is owned by one worker
+          tiles_done.fetch_add(1);
           if (timed) progress.set_fraction(timer.seconds() / options.time_budget);
-          else progress.advance();
+          else progress.advance(pass_spp);
         },
         &stop);
     ++result.passes;
+    if (pass_done) pass_done(pass, tiles_done.load() == int64_t(result.tiles.size()));
     if (stop.load()) break;
   }
   progress.finish();
   result.seconds = timer.seconds();
   const bool interrupted = options.stop && options.stop->load();
-  result.partial = interrupted || (!timed && result.min_spp() < pass_spp);
+  result.partial = interrupted || (!timed && result.min_spp() < spp);
   return result;
 }
 

@@ -1,10 +1,15 @@
 // Tiled, pass-based scheduling shared by the Monte Carlo integrators.
-// The image is cut into 16x16 tiles. A fixed-spp render is one pass of `spp` samples;
-// a time-budgeted render runs passes of one sample per pixel until the wall-clock
-// budget (steady_clock) is used up. Every (pass, tile) gets its own random stream
-// derived from (seed, pass, tile), so results depend only on the seed — not on the
-// thread count or scheduling. Stopping (Ctrl-C or budget) happens at tile boundaries:
-// a tile is either fully rendered for a pass or not at all, and its sample count says so.
+// The image is cut into 16x16 tiles. A fixed-spp render is progressive: passes over
+// every tile of 1, 1, 2, 4, ..., 64, 64, ... samples per pixel (the totals double up to
+// the cap, the last pass takes the rest), so an interrupted render (Ctrl-C) is the whole image at
+// fewer samples, not a finished part and a black rest. A time-budgeted render runs
+// passes of one sample per pixel until the wall-clock budget (steady_clock) is used up.
+// Every (pass, tile) gets its own random stream derived from (seed, pass, tile), so
+// results depend only on the seed — not on the thread count or scheduling. Stopping
+// (Ctrl-C or budget) happens at tile boundaries: a tile is either fully rendered for a
+// pass or not at all, and its sample count says so. `pass_done(pass, complete)` (optional)
+// runs after each pass on the calling thread; complete = every tile rendered it
+// (integrators that need whole passes, e.g. G-PT's pair estimates, commit only those).
 #pragma once
 
 #include <functional>
@@ -39,9 +44,15 @@ struct ScheduleResult {
 using TileFunction = std::function<void(const Tile& tile, int spp, core::Rng& rng, int thread)>;
 
 constexpr int kTileSize = 16;
+constexpr int kMaxPassSpp = 64;  // largest progressive pass (samples per pixel)
+
+using PassFunction = std::function<void(int64_t pass, bool complete)>;
 
 ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
-                         const TileFunction& fn);
+                         const TileFunction& fn, const PassFunction& pass_done = {});
+
+// Samples per pixel of pass `pass` of a progressive render of `spp` in all (0 = no more).
+int progressive_pass_spp(int spp, int64_t pass);
 
 // Threads that run_tiles will use for these options.
 int resolve_threads(const RenderOptions& options);

@@ -28,7 +28,19 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
     counters.flush(thread_stats[size_t(thread)]);
   };
 
-  // Whole passes only: the symmetric pair estimates need equal counts in both pixels.
+  // Whole passes only: the symmetric pair estimates need equal counts in both pixels. A
+  // pass's samples go to the per-thread buffers; a complete pass is moved into `total`,
+  // an interrupted one (Ctrl-C) is dropped, so a partial render is the whole image at the
+  // samples of its complete passes.
+  gradients::GradientBuffers total(w, h);
+  int64_t committed = 0;
+  auto commit = [&](bool complete) {
+    for (auto& b : buffers) {
+      if (complete) total.merge(b);
+      b.clear();
+    }
+    committed += complete ? 1 : 0;
+  };
   core::Timer timer;
   RenderOptions pass_opt = options;
   pass_opt.time_budget = 0;
@@ -41,17 +53,20 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
       pass_opt.seed = core::mix64(options.seed * 0x9e3779b97f4a7c15ull + uint64_t(passes));
       const ScheduleResult sched = run_tiles(w, h, pass_opt, "gpt", tile_fn);
       ++passes;
+      commit(!sched.partial);
       if (sched.partial) partial = true;
     } while (!partial && timer.seconds() < options.time_budget && !(options.stop && options.stop->load()));
   } else {
-    const ScheduleResult sched = run_tiles(w, h, pass_opt, "gpt", tile_fn);
-    passes = 1;
+    // Progressive passes (tile_scheduler.h); only complete ones are kept.
+    const ScheduleResult sched =
+        run_tiles(w, h, pass_opt, "gpt", tile_fn, [&](int64_t, bool complete) { commit(complete); });
+    passes = sched.passes;
     partial = sched.partial;
   }
+  // Ctrl-C between two passes of a --time render stops it early too.
+  partial |= options.stop && options.stop->load();
   const double render_seconds = timer.seconds();
 
-  gradients::GradientBuffers total(w, h);
-  for (const auto& b : buffers) total.merge(b);
   RenderResult result;
   for (const auto& s : thread_stats) result.stats.merge(s);
 
@@ -90,6 +105,7 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
   result.max_spp = hi;
   result.partial = partial;
   result.info["passes"] = passes;
+  result.info["passes_kept"] = committed;
   result.info["render_seconds"] = render_seconds;
   result.info["solve_l2_seconds"] = l2_seconds;
   result.info["solve_l1_seconds"] = l1_seconds;
