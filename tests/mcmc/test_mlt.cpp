@@ -4,14 +4,16 @@
 // estimate of b, startup and correlation between mutations -- runs are independent, so
 // the sample variance over runs is unbiased whatever the chain's autocorrelation).
 // Welch t-tests: the image mean (alpha = 1%) and every 8x8 block (Sidak-corrected to a
-// 1% family-wise level). An MLT image scaled by 1.1 must be rejected. Also: a render is
-// deterministic for a fixed seed and thread count.
+// 1% family-wise level). The same tests must reject MLT run with a real defect: an
+// asymmetric small step (step length growing with the coordinate) without its Q ratio.
+// Also: a render is deterministic for a fixed seed and thread count.
 #include <boost/math/distributions/students_t.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
 #include "integrators/integrator.h"
+#include "integrators/mlt/mlt_integrator.h"
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
@@ -20,9 +22,23 @@ using namespace dp;
 namespace {
 constexpr int kRes = 32, kBlock = 8, kRuns = 10;
 
+// Deliberately asymmetric small step (as in test_chain_density.cpp): K(x -> y) != K(y -> x)
+// and the chain does not correct for it.
+void position_scaled_step(const mcmc::KelemenKernel& kernel, std::vector<float>& u, core::Rng& rng) {
+  for (float& x : u) x = mcmc::wrap_unit(double(x) + kernel.offset(rng) * (0.2 + 4.0 * double(x)));
+}
+
+// name "mlt-asymmetric": mlt with position_scaled_step.
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, uint64_t seed) {
   integrators::Settings settings;
-  auto in = integrators::make_integrator(name, settings);
+  std::unique_ptr<integrators::Integrator> in;
+  if (name == "mlt-asymmetric") {
+    integrators::MltSettings m = integrators::MltSettings::read(settings);
+    m.small_step = position_scaled_step;
+    in = std::make_unique<integrators::MltIntegrator>(m, settings.to_json());
+  } else {
+    in = integrators::make_integrator(name, settings);
+  }
   integrators::RenderOptions opt;
   opt.spp = spp;
   opt.seed = seed;
@@ -112,11 +128,15 @@ TEST_CASE("mlt: PSSMLT agrees with the path tracer (image mean and 8x8 blocks)",
                           << ", worst over blocks " << r << "; acceptance " << acceptance);
   REQUIRE(acceptance > 0.0);
   REQUIRE(r < 1.0);
-  // The same tests reject an MLT image scaled by 1.1 (so they can fail).
-  double scaled_mean_ratio = 0;
-  const double r_wrong = worst_ratio(mlt, pt, 1.1, &scaled_mean_ratio);
-  INFO("x1.1: mean |t|/crit " << scaled_mean_ratio << ", worst " << r_wrong);
-  REQUIRE(scaled_mean_ratio > 1.0);
+  // The same tests reject MLT with an asymmetric small step and no Q ratio (so they can
+  // fail). The image mean cannot see it (b normalises the total: watched |t|/crit 0.67);
+  // the blocks do (watched worst |t|/crit 5.4). Power: the image mean's standard error
+  // is ~0.17% (MLT) / 0.12% (PT); a block has 1/16 of the pixels, so ~4x that, and the
+  // Sidak critical t is ~4.3: a block brighter or darker by more than ~3-4% is detected.
+  const auto broken = run_stats(*s, "mlt-asymmetric", 256, 1000);
+  double broken_mean_ratio = 0;
+  const double r_wrong = worst_ratio(broken, pt, 1.0, &broken_mean_ratio);
+  INFO("asymmetric step: mean |t|/crit " << broken_mean_ratio << ", worst " << r_wrong);
   REQUIRE(r_wrong > 1.0);
 }
 
