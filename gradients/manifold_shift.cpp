@@ -290,7 +290,7 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
       return ShiftStatus::not_invertible;
     }
   }
-  out.jacobian[size_t(k)] = J;
+  out.jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, false);
   out.reconnected = m;
   return ShiftStatus::ok;
 }

@@ -109,7 +109,7 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
     if (nv.kind == VertexKind::surface) nv.wi = nv.hit.shading.to_local(-wo_w);
     nv.emission = pathspace::emitted(m_scene, nv, -wo_w);
     o.append(nv);
-    out.jacobian[size_t(k)] = J;
+    out.jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, false);
     out.step[size_t(k)] = StepKind::reconnect;
     out.reconnected = k + 1;
     return ShiftStatus::ok;
@@ -152,7 +152,7 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
   const Vec3 wo_w = ov.hit.shading.to_world(wo_l);
   if (!pathspace::consistent_side(ov.hit, wo_w, wo_l.z())) return ShiftStatus::zero_contribution;
   set_scatter(ov, b, wo_l, wo_w, f, pdf);
-  out.jacobian[size_t(k)] = J;
+  out.jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, out.step[size_t(k)] == StepKind::half_vector);
   return trace_next(base, k, out);
 }
 
@@ -213,7 +213,7 @@ void ReconnectionShift::shift_nee(const Path& base, int k, ShiftResult& out) con
     ol.f_cos = bsdf.eval_pdf(ctx, ov.wi, ol.wo, p) * abs_cos_theta(ol.wo);
     ol.bsdf_pdf = ol.delta ? 0.0 : double(p);
     ol.valid = true;
-    out.nee_jacobian[size_t(k)] = J;
+    out.nee_jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, kind == StepKind::nee_half_vector);
     out.nee_step[size_t(k)] = kind;
   };
 

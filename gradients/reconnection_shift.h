@@ -33,6 +33,7 @@ namespace dp::gradients {
 struct ReconnectionShiftOptions {
   float threshold = 0.001f;  // pathspace::kDefaultShiftThreshold
   bool half_vector_enabled = true;
+  JacobianFault fault = JacobianFault::none;  // tests' negative controls only (shift.h)
 };
 
 class ReconnectionShift : public Shift {

@@ -37,6 +37,24 @@ enum class StepKind : uint8_t {
 constexpr int kStepKindCount = 10;
 const char* to_string(StepKind k);
 
+// A deliberate defect of the Jacobians a shift reports, for the tests' negative
+// controls only (tests/integrators/test_gpt_unbiased.cpp, test_gpt_glossy.cpp: G-PT run
+// with it must be rejected as biased). Carried explicitly (ReconnectionShiftOptions::fault,
+// set from GptSettings::faults by C++ test code); no scene key or --set reaches it.
+enum class JacobianFault : uint8_t {
+  none,
+  unit,              // every factor |dT/dx| reported as 1 (reconnection, half vector, manifold; path and NEE)
+  unit_half_vector,  // only the half-vector copies' factors (glossy/specular vertices; path and NEE)
+};
+
+// The factor a shift stores: J itself, or 1 where `fault` forces it (`half_vector`: J is
+// a half-vector copy's factor). One predictable branch when there is no fault.
+inline double reported_jacobian(double J, JacobianFault fault, bool half_vector) {
+  if (fault == JacobianFault::none) [[likely]]
+    return J;
+  return fault == JacobianFault::unit || half_vector ? 1.0 : J;
+}
+
 struct ShiftResult {
   pathspace::Path path;
   std::vector<double> jacobian;
