@@ -5,9 +5,27 @@
 
 #include <string>
 
+#include "gradients/shift.h"
 #include "integrators/settings.h"
 
 namespace dp::integrators {
+
+// A deliberate defect of the symmetric MIS weight, for the tests' negative controls.
+enum class MisFault : uint8_t {
+  none,
+  // w = 1 / (1 + (p_i,other/p_self)^2): normalised over pixel i's two techniques only,
+  // the offset pixel's p_j,t(T x)|T'| left out (Kettunen 2015, Sec. 4 and gradients/mis.h
+  // normalise over all four), so the weights of a pair's four ways sum to about 2.
+  without_offset,
+};
+
+// Deliberate defects that the tests' statistical checks must reject (test_gpt_unbiased.cpp,
+// test_gpt_glossy.cpp). C++ only: GptSettings::read never sets them, no scene key or --set
+// reaches them, and the default (none) leaves every image bit-identical.
+struct GptFaults {
+  gradients::JacobianFault jacobian = gradients::JacobianFault::none;  // carried into the shift
+  MisFault mis = MisFault::none;
+};
 
 struct GptSettings {
   int rr_depth = 5;               // Russian roulette after this many segments (as PT)
@@ -18,6 +36,7 @@ struct GptSettings {
   std::string shift = "reconnection";  // reconnection (Kettunen 2015) | manifold (gradients/manifold_shift.h)
   std::string manifold_chains = "emitter";  // shift=manifold: walk chains ending on an emitter | all
   std::string manifold_walk = "fallback";   // shift=manifold: walk where the copy misses | always
+  GptFaults faults;                         // tests only, never read from settings (see GptFaults)
 
   static GptSettings read(Settings& s);
 };

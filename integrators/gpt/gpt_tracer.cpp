@@ -40,7 +40,8 @@ void GptCounters::flush(core::Stats& stats) const {
 namespace {
 std::unique_ptr<gradients::Shift> make_shift(const scene::Scene& scene, const GptSettings& settings) {
   const gradients::ReconnectionShiftOptions ro{settings.shift_threshold,
-                                               scene.caps().has_glossy || scene.caps().has_specular};
+                                               scene.caps().has_glossy || scene.caps().has_specular,
+                                               settings.faults.jacobian};
   if (settings.shift == "manifold")
     return std::make_unique<gradients::ManifoldShift>(
         scene, gradients::ManifoldShiftOptions{ro, {}, settings.manifold_chains == "emitter",
@@ -80,6 +81,14 @@ void GptTracer::count(const Path& base, const ShiftResult& r, GptCounters& c) co
 }
 
 namespace {
+// The symmetric power-heuristic weight (gradients/mis.h), or the MisFault defect of a
+// tests' negative control (one predictable branch).
+double mis_weight(double other_base, double offset_same, double offset_other, MisFault fault) {
+  if (fault == MisFault::without_offset) [[unlikely]]
+    return gradients::symmetric_power_weight(other_base, 0.0, 0.0);
+  return gradients::symmetric_power_weight(other_base, offset_same, offset_other);
+}
+
 // NEE is performed at vertex m of a walk (so NEE can produce the path through x_m).
 bool nee_at(const Vertex& v, bool nee) {
   return nee && v.is_surface() && v.hit.bsdf && !v.hit.bsdf->is_purely_delta() && !v.delta_lobe();
@@ -161,7 +170,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
         d = ol.visible ? ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
         if (ol.visible) fo = beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
       }
-      accumulate(fb, fo, gradients::symmetric_power_weight(b_other, c, d), has_offset);
+      accumulate(fb, fo, mis_weight(b_other, c, d, m_settings.faults.mis), has_offset);
     }
     // BSDF paths (x_0..x_k), k >= 2, whose last vertex may emit. The light densities (for
     // the MIS weights) are only needed where the base or the offset vertex emits; the
@@ -187,7 +196,7 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
                 : 0.0;
         fo = beta_o[size_t(k)] * ov.emission.cast<double>();
       }
-      accumulate(fb, fo, gradients::symmetric_power_weight(b_other, c, d), has_offset);
+      accumulate(fb, fo, mis_weight(b_other, c, d, m_settings.faults.mis), has_offset);
     }
     if (!primal_i.isFinite().all() || !primal_j.isFinite().all() || !grad.isFinite().all()) {
       ++counters.nan_dropped;  // counted and dropped, never splatted
