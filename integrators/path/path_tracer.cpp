@@ -23,7 +23,10 @@ Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const Bs
   const Vec3 wo_local = hit.shading.to_local(ds.wi);
   if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
   float bsdf_pdf;  // pdf of sampling wo by the BSDF, for the MIS weight
-  const Rgb f = hit.bsdf->eval_pdf(ctx, wi_local, wo_local, bsdf_pdf) * abs_cos_theta(wo_local);
+  // |cos theta_o| of the light direction at the shading point (dropped only by the tests'
+  // negative control PathFault::nee_without_cosine).
+  const float cos_o = m_settings.fault == PathFault::nee_without_cosine ? 1.0f : abs_cos_theta(wo_local);
+  const Rgb f = hit.bsdf->eval_pdf(ctx, wi_local, wo_local, bsdf_pdf) * cos_o;
   if (is_black(f)) return Rgb::Zero();
   ++counters.shadow_rays;
   const bool blocked = std::isfinite(ds.dist) ? m_scene.occluded(m_scene.spawn_segment(hit, ds.p))
