@@ -1,14 +1,23 @@
-// Helpers of the G-PT unbiasedness tests (test_gpt_unbiased.cpp, test_gpt_manifold.cpp):
-// per-block gradient sums of independent renders and Welch t-tests against PT.
+// Helpers of the G-PT unbiasedness tests (test_gpt_unbiased.cpp, test_gpt_manifold.cpp,
+// test_gpt_glossy.cpp): per-block gradient sums of independent renders and Welch t-tests
+// against PT; a render driven straight through GptTracer so that a test can run the
+// real estimator with a deliberate defect (GptSettings::faults) through the same test.
 #pragma once
 
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
+#include "core/rng.h"
+#include "gradients/gradient_buffers.h"
+#include "integrators/gpt/gpt_tracer.h"
 #include "integrators/integrator.h"
+#include "pathspace/sample_stream.h"
+#include "reconstruct/problem.h"
+#include "reconstruct/solve.h"
 
 namespace dp::test {
 constexpr int kRes = 16, kBlock = 4, kRuns = 10;
@@ -50,16 +59,44 @@ struct Blocks {
   }
 };
 
+// Appends one run to `out`: `img` is PT's image or G-PT's direct layer, dx / dy G-PT's
+// gradient layers (null for PT), `mean_of` the image whose mean is tested (PT's image or
+// G-PT's L2 reconstruction).
+inline void add_run(Blocks& out, const core::Image& img, const core::Image* dx, const core::Image* dy,
+                    const core::Image& mean_of) {
+  const int nb = kRes / kBlock;
+  out.grad.resize(size_t(2 * nb * nb));
+  out.direct.resize(size_t(2 * nb * nb));
+  auto px = [&](int x, int y) { return double(img(x, y).sum()); };
+  for (int by = 0; by < nb; ++by)
+    for (int bx = 0; bx < nb; ++bx) {
+      double sx = 0, sy = 0, gx = 0, gy = 0;
+      for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
+        for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) {
+          if (x + 1 < kRes) {
+            sx += px(x + 1, y) - px(x, y);
+            if (dx) gx += double((*dx)(x, y).sum());
+          }
+          if (y + 1 < kRes) {
+            sy += px(x, y + 1) - px(x, y);
+            if (dy) gy += double((*dy)(x, y).sum());
+          }
+        }
+      out.direct[size_t(by * nb + bx)].push_back(sx);
+      out.direct[size_t(nb * nb + by * nb + bx)].push_back(sy);
+      out.grad[size_t(by * nb + bx)].push_back(gx);
+      out.grad[size_t(nb * nb + by * nb + bx)].push_back(gy);
+    }
+  out.mean.push_back(mean_of.mean().sum());
+}
+
 // `set`: integrator settings (key, value), e.g. {{"shift", "manifold"}}.
 inline Blocks stats(const scene::Scene& s, const std::string& integrator, int spp, uint64_t seed0,
                     const std::vector<std::pair<std::string, std::string>>& set = {}, int max_depth = 5) {
   integrators::Settings settings;
   for (const auto& kv : set) settings.set(kv.first, kv.second);
   auto in = integrators::make_integrator(integrator, settings);
-  const int nb = kRes / kBlock;
   Blocks out;
-  out.grad.resize(size_t(2 * nb * nb));
-  out.direct.resize(size_t(2 * nb * nb));
   for (int r = 0; r < kRuns; ++r) {
     integrators::RenderOptions opt;
     opt.spp = spp;
@@ -68,32 +105,72 @@ inline Blocks stats(const scene::Scene& s, const std::string& integrator, int sp
     opt.max_depth = max_depth;
     opt.quiet = true;
     const auto res = in->render(s, opt);
-    const bool gpt = integrator == "gpt";
     // PT: differences of the image (all in `direct`); G-PT: its gradient layers plus the
     // differences of its direct layer.
-    const core::Image& img = gpt ? layer(res, "direct") : res.layers[0].image;
-    auto px = [&](int x, int y) { return double(img(x, y).sum()); };
-    for (int by = 0; by < nb; ++by)
-      for (int bx = 0; bx < nb; ++bx) {
-        double sx = 0, sy = 0, gx = 0, gy = 0;
-        for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
-          for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) {
-            if (x + 1 < kRes) {
-              sx += px(x + 1, y) - px(x, y);
-              if (gpt) gx += double(layer(res, "dx")(x, y).sum());
-            }
-            if (y + 1 < kRes) {
-              sy += px(x, y + 1) - px(x, y);
-              if (gpt) gy += double(layer(res, "dy")(x, y).sum());
-            }
-          }
-        out.direct[size_t(by * nb + bx)].push_back(sx);
-        out.direct[size_t(nb * nb + by * nb + bx)].push_back(sy);
-        out.grad[size_t(by * nb + bx)].push_back(gx);
-        out.grad[size_t(nb * nb + by * nb + bx)].push_back(gy);
-      }
-    out.mean.push_back((gpt ? layer(res, "recon_l2") : res.layers[0].image).mean().sum());
+    if (integrator == "gpt")
+      add_run(out, layer(res, "direct"), &layer(res, "dx"), &layer(res, "dy"), layer(res, "recon_l2"));
+    else
+      add_run(out, res.layers[0].image, nullptr, nullptr, res.layers[0].image);
   }
+  return out;
+}
+
+// GptSettings as `--integrator gpt` would read them from `set` (GptSettings' member
+// defaults are not all the integrator's: read() applies e.g. the 0.05 shift threshold).
+inline integrators::GptSettings gpt_settings(const std::vector<std::pair<std::string, std::string>>& set = {}) {
+  integrators::Settings settings;
+  for (const auto& kv : set) settings.set(kv.first, kv.second);
+  const integrators::GptSettings g = integrators::GptSettings::read(settings);
+  settings.check_all_used("gpt");
+  return g;
+}
+
+// The layers of one G-PT render that the tests use.
+struct GptFrame {
+  core::Image dx, dy, direct, l2;
+};
+
+// One G-PT render straight through GptTracer (the per-sample physics of `--integrator
+// gpt`) with explicit GptSettings, so a test can set GptSettings::faults, which no scene
+// key or --set reaches: `spp` samples in every pixel from the pixel's own random stream
+// (seed, pixel), one thread; the integrator's per-pixel normalisation (GradientBuffers)
+// and screened Poisson L2 solve with the direct layer added back (Lehtinen 2013, Eq. 8;
+// Kettunen 2015, Sec. 6; as gpt_integrator.cpp).
+inline GptFrame render_gpt_tracer(const scene::Scene& s, const integrators::GptSettings& settings, int spp,
+                                  uint64_t seed, int max_depth) {
+  const int w = s.camera().width(), h = s.camera().height();
+  const integrators::GptTracer tracer(s, settings, max_depth);
+  gradients::GradientBuffers buf(w, h);
+  integrators::GptCounters counters;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      core::Rng rng(seed, uint64_t(y) * uint64_t(w) + uint64_t(x));
+      pathspace::IndependentStream stream(rng);
+      for (int i = 0; i < spp; ++i) tracer.sample(x, y, stream, buf, counters);
+    }
+  GptFrame f{buf.dx(), buf.dy(), buf.direct(), {}};
+  const reconstruct::Problem problem = reconstruct::make_grid_problem(buf.primal(), f.dx, f.dy, settings.alpha);
+  reconstruct::SolveOptions sopt;
+  sopt.threads = 1;
+  f.l2 = reconstruct::solve_l2(problem, sopt).image;
+  f.l2 += f.direct;
+  return f;
+}
+
+// stats() of kRuns renders through render_gpt_tracer (seeds seed0 + run), two runs at a
+// time (they are independent).
+inline Blocks tracer_stats(const scene::Scene& s, const integrators::GptSettings& settings, int spp, uint64_t seed0,
+                           int max_depth = 5) {
+  std::vector<GptFrame> frames(static_cast<size_t>(kRuns));
+  auto run = [&](int first) {
+    for (int r = first; r < kRuns; r += 2)
+      frames[size_t(r)] = render_gpt_tracer(s, settings, spp, seed0 + uint64_t(r), max_depth);
+  };
+  std::thread other(run, 1);
+  run(0);
+  other.join();
+  Blocks out;
+  for (const GptFrame& f : frames) add_run(out, f.direct, &f.dx, &f.dy, f.l2);
   return out;
 }
 
@@ -107,18 +184,71 @@ inline Moments moments(const std::vector<double>& v) {
   for (double x : v) s2 += (x - m) * (x - m);
   return {m, s2 / double(v.size() - 1)};
 }
-// |t| / critical (Welch, Sidak over `tests`); < 1 passes.
-inline double ratio(const std::vector<double>& a, const std::vector<double>& b, double scale_a, int tests, double* z) {
+// Welch's t-test of mean(a) = mean(b) at 1% significance, Sidak-corrected over `tests`:
+// t, its critical value and the standard error of the difference of the means (so a shift
+// of the difference by more than crit * se is rejected about half the time, by more than
+// (crit + 1.28) se about 90% of the time).
+struct Welch {
+  double t = 0, crit = 0, se = 0;
+};
+inline Welch welch(const std::vector<double>& a, const std::vector<double>& b, double scale_a, int tests) {
   Moments ma = moments(a), mb = moments(b);
   ma.mean *= scale_a;
   ma.var *= scale_a * scale_a;
   const double va = ma.var / double(a.size()), vb = mb.var / double(b.size());
-  if (va + vb <= 0) return 0;
-  const double t = (ma.mean - mb.mean) / std::sqrt(va + vb);
+  if (va + vb <= 0) return {};
   const double dof = (va + vb) * (va + vb) / (va * va / double(a.size() - 1) + vb * vb / double(b.size() - 1));
   const double alpha = 1.0 - std::pow(1.0 - 0.01, 1.0 / double(tests));
-  const double crit = boost::math::quantile(boost::math::complement(boost::math::students_t(dof), alpha / 2));
-  if (z) *z = t;
-  return std::abs(t) / crit;
+  Welch out;
+  out.se = std::sqrt(va + vb);
+  out.t = (ma.mean - mb.mean) / out.se;
+  out.crit = boost::math::quantile(boost::math::complement(boost::math::students_t(dof), alpha / 2));
+  return out;
+}
+
+// |t| / critical (Welch, Sidak over `tests`); < 1 passes.
+inline double ratio(const std::vector<double>& a, const std::vector<double>& b, double scale_a, int tests, double* z) {
+  const Welch wt = welch(a, b, scale_a, tests);
+  if (!(wt.crit > 0)) return 0;
+  if (z) *z = wt.t;
+  return std::abs(wt.t) / wt.crit;
+}
+
+// The whole unbiasedness test of G-PT runs `g` against PT runs `p`: per-block Welch tests
+// of the gradients (G-PT's gradient layers plus its direct layer's differences vs PT's
+// differences; Sidak over the blocks) and one of the L2 reconstruction's mean against
+// PT's image mean. It rejects if either ratio |t|/crit reaches 1.
+struct Verdict {
+  double grad = 0, zmax = 0;  // worst |t|/crit over gradient blocks and its |t|
+  int worst_block = -1;
+  double l2 = 0, zl2 = 0;     // L2 mean: |t|/crit and t
+  // Power: the smallest relative error that moves some statistic by its critical value
+  // (detected ~50% of the time; the *90 fields: ~90%, at (crit + 1.28) se). grad_scale: a
+  // factor (1 + e) on every gradient, e = min over blocks of crit se / |G-PT block mean|;
+  // l2_shift: a relative shift of the L2 mean, crit se / PT's mean.
+  double grad_scale = 0, l2_shift = 0;
+  double grad_scale90 = 0, l2_shift90 = 0;  // the same at ~90% power ((crit + 1.28) se)
+  bool rejects() const { return grad >= 1.0 || l2 >= 1.0; }
+};
+inline Verdict verdict(const Blocks& g, const Blocks& p) {
+  Verdict v;
+  const int tests = int(g.grad.size());
+  v.grad_scale = v.grad_scale90 = 1e300;
+  for (int i = 0; i < tests; ++i) {
+    const std::vector<double> gi = g.scaled(size_t(i), 1.0);
+    const Welch wt = welch(gi, p.direct[size_t(i)], 1.0, tests);
+    if (!(wt.crit > 0)) continue;
+    const double r = std::abs(wt.t) / wt.crit;
+    if (r > v.grad) v.grad = r, v.zmax = std::abs(wt.t), v.worst_block = i;
+    const double m = std::abs(moments(g.grad[size_t(i)]).mean);
+    if (m > 0) v.grad_scale = std::min(v.grad_scale, wt.crit * wt.se / m);
+    if (m > 0) v.grad_scale90 = std::min(v.grad_scale90, (wt.crit + 1.28) * wt.se / m);
+  }
+  const Welch wl = welch(g.mean, p.mean, 1.0, 1);
+  v.l2 = wl.crit > 0 ? std::abs(wl.t) / wl.crit : 0;
+  v.zl2 = wl.t;
+  v.l2_shift = wl.crit * wl.se / std::abs(moments(p.mean).mean);
+  v.l2_shift90 = (wl.crit + 1.28) * wl.se / std::abs(moments(p.mean).mean);
+  return v;
 }
 }  // namespace dp::test
