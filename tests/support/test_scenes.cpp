@@ -71,4 +71,25 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
+std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int grey =
+      s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.5f, 0.5f, 0.5f)))));
+  auto floor = quad(Vec3(-3, -1, -4), Vec3(-3, -1, 2), Vec3(3, -1, 2), Vec3(3, -1, -4));
+  floor->material = grey;
+  s->add_shape(std::move(floor));
+  auto big = std::make_unique<scene::Sphere>(Vec3(0.0f, -0.4f, -1.3f), 0.6f);
+  big->material = sphere ? s->add_bsdf(sphere) : grey;
+  s->add_shape(std::move(big));
+  auto small = std::make_unique<scene::Sphere>(Vec3(0.75f, -0.75f, -0.75f), 0.25f);
+  small->material = grey;
+  s->add_shape(std::move(small));
+  core::Image map(32, 16);
+  for (int y = 0; y < map.height(); ++y)
+    for (int x = 0; x < map.width(); ++x)
+      map(x, y) = (x / 4 + y / 4) % 2 == 0 ? Rgb(1.6f, 1.4f, 1.0f) : Rgb(0.15f, 0.2f, 0.3f);
+  s->add_emitter(std::make_unique<scene::EnvironmentEmitter>(std::move(map), Mat3::Identity(), 1.0f));
+  return finish(std::move(s), Vec3(0.0f, 0.0f, 0.6f), Vec3(0.0f, -0.45f, -1.3f), 50.0f, resolution);
+}
+
 }  // namespace dp::test

@@ -18,4 +18,13 @@ double furnace_radiance(float albedo, float emission, float point_intensity);
 // two spheres with the given BSDFs (either may be null = diffuse).
 std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution);
 
+// An open scene lit only by a textured environment (a 32x16 lat-long checkerboard held in
+// memory: cells of 4x4 texels alternating warm bright (1.6, 1.4, 1.0) and dark blue
+// (0.15, 0.2, 0.3)) over a diffuse floor (albedo 0.5, y = -1), with a sphere of BSDF
+// `sphere` (null = diffuse; radius 0.6) filling the middle of the view and a small
+// diffuse sphere beside it that the big one reflects. Built for G-PT's half-vector copy
+// through glossy vertices: with a rough conductor below the shift threshold most camera
+// paths are camera -> glossy -> environment (or -> floor / small sphere).
+std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution);
+
 }  // namespace dp::test
