@@ -1,13 +1,11 @@
 #include "integrators/gpt/gpt_tracer.h"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
-#include "gradients/manifold_shift.h"
 #include "gradients/mis.h"
-#include "pathspace/measure.h"
-#include "pathspace/scatter.h"
+#include "gradients/pair_terms.h"
+#include "gradients/shift_factory.h"
 
 namespace dp::integrators {
 
@@ -39,14 +37,13 @@ void GptCounters::flush(core::Stats& stats) const {
 
 namespace {
 std::unique_ptr<gradients::Shift> make_shift(const scene::Scene& scene, const GptSettings& settings) {
-  const gradients::ReconnectionShiftOptions ro{settings.shift_threshold,
-                                               scene.caps().has_glossy || scene.caps().has_specular,
-                                               settings.faults.jacobian};
-  if (settings.shift == "manifold")
-    return std::make_unique<gradients::ManifoldShift>(
-        scene, gradients::ManifoldShiftOptions{ro, {}, settings.manifold_chains == "emitter",
-                                               settings.manifold_walk == "fallback"});
-  return std::make_unique<gradients::ReconnectionShift>(scene, ro);
+  gradients::ShiftChoice c;
+  c.kind = settings.shift;
+  c.threshold = settings.shift_threshold;
+  c.manifold_emitter_chains_only = settings.manifold_chains == "emitter";
+  c.manifold_walk_as_fallback = settings.manifold_walk == "fallback";
+  c.fault = settings.faults.jacobian;
+  return gradients::make_shift(scene, c);
 }
 }  // namespace
 
@@ -89,19 +86,13 @@ double mis_weight(double other_base, double offset_same, double offset_other, Mi
   return gradients::symmetric_power_weight(other_base, offset_same, offset_other);
 }
 
-// NEE is performed at vertex m of a walk (so NEE can produce the path through x_m).
-bool nee_at(const Vertex& v, bool nee) {
-  return nee && v.is_surface() && v.hit.bsdf && !v.hit.bsdf->is_purely_delta() && !v.delta_lobe();
-}
 }  // namespace
 
 void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradients::GradientBuffers& buf,
                        GptCounters& counters) const {
   thread_local Path base;
   thread_local ShiftResult res;
-  thread_local std::vector<Rgbd> beta, beta_o;
-  thread_local std::vector<double> ratio;
-  thread_local std::vector<double> b_other_bsdf;  // base light pdf / bsdf pdf per BSDF path, lazily (NaN: not yet)
+  thread_local gradients::PairTerms pairs;
   ++counters.samples;
   m_builder.build(px, py, stream, base);
   const int n = base.size();
@@ -111,92 +102,30 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
     if (is_finite(direct)) buf.add_direct(px, py, direct.cast<double>());
     else ++counters.nan_dropped;
   }
-  // Base throughput f/p of every prefix, in double.
-  beta.assign(size_t(n), Rgbd::Ones());
-  for (int k = 1; k + 1 < n; ++k)
-    beta[size_t(k + 1)] = beta[size_t(k)] * base[k].f_cos.cast<double>() / (base[k].pdf * double(base[k].rr));
-
-  b_other_bsdf.assign(size_t(n), std::numeric_limits<double>::quiet_NaN());
+  pairs.set_base(m_scene, m_settings.nee, base);
   static constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
   for (int nb = 0; nb < 4; ++nb) {
     const int qx = px + kDx[nb], qy = py + kDy[nb];
     const bool inside = qx >= 0 && qy >= 0 && qx < w && qy < h;
-    int alive = 0;
     if (inside) {
       m_shift->shift(base, Vec2(float(kDx[nb]), float(kDy[nb])), res);
       count(base, res, counters);
-      alive = res.alive;
-      // Offset throughput relative to the base density, and pdf ratios p_j(T x)|T'| / p_i(x)
-      // per prefix (Kettunen 2015, Sec. 5.3: ratios in double, RR follows the base).
-      beta_o.assign(size_t(n), Rgbd::Zero());
-      ratio.assign(size_t(n), 0.0);
-      if (alive >= 2) beta_o[1] = Rgbd::Ones(), ratio[1] = 1.0;
-      for (int k = 1; k + 1 < alive; ++k) {
-        const Vertex& o = res.path[k];
-        const double J = res.jacobian[size_t(k)];
-        beta_o[size_t(k + 1)] = beta_o[size_t(k)] * o.f_cos.cast<double>() * J / (base[k].pdf * double(base[k].rr));
-        ratio[size_t(k + 1)] = ratio[size_t(k)] * o.pdf * J / base[k].pdf;
-      }
     } else {
       ++counters.shifts_outside;
     }
     Rgbd primal_i = Rgbd::Zero(), primal_j = Rgbd::Zero(), grad = Rgbd::Zero();
-    // One concrete path (NEE or BSDF) of the pair, weighted by the symmetric MIS weight:
-    // both pixels' primal estimates and the pair's gradient f_j(Tx)|T'| - f_i(x) (a failed
-    // shift leaves only the base term).
-    auto accumulate = [&](const Rgbd& fb, const Rgbd& fo, double wgt, bool has_offset) {
-      if ((fb == 0.0).all() && (fo == 0.0).all()) return;
-      primal_i += wgt * fb;
-      if (has_offset) {
-        primal_j += wgt * fo;
-        grad += wgt * (fo - fb);
+    // Every concrete path (NEE or BSDF, >= 2 segments) of the pair, weighted by the
+    // symmetric MIS weight: both pixels' primal estimates and the pair's gradient
+    // f_j(Tx)|T'| - f_i(x) (a failed shift leaves only the base term).
+    for (const gradients::PairTerm& t : pairs.terms(inside ? &res : nullptr, 2)) {
+      const double wgt = mis_weight(t.b_other, t.c, t.d, m_settings.faults.mis);
+      primal_i += wgt * t.fb;
+      if (t.has_offset) {
+        primal_j += wgt * t.fo;
+        grad += wgt * (t.fo - t.fb);
       } else if (inside) {
-        grad -= wgt * fb;
+        grad -= wgt * t.fb;
       }
-    };
-    // NEE paths (x_0..x_k, light sample).
-    for (int k = 1; k < n; ++k) {
-      const pathspace::LightSample& bl = base.nee[size_t(k)];
-      if (!bl.valid || !(bl.pdf > 0.0)) continue;
-      const Rgbd fb = bl.visible ? Rgbd(beta[size_t(k)] * (bl.f_cos * bl.radiance).cast<double>() / bl.pdf) : Rgbd::Zero();
-      const double b_other = bl.visible ? bl.bsdf_pdf / bl.pdf : 0.0;
-      double c = 0, d = 0;
-      Rgbd fo = Rgbd::Zero();
-      const bool has_offset = inside && res.nee_ok(k);
-      if (has_offset) {
-        const pathspace::LightSample& ol = res.path.nee[size_t(k)];
-        const double J = res.nee_jacobian[size_t(k)];
-        c = ratio[size_t(k)] * J * ol.pdf / bl.pdf;
-        d = ol.visible ? ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
-        if (ol.visible) fo = beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
-      }
-      accumulate(fb, fo, mis_weight(b_other, c, d, m_settings.faults.mis), has_offset);
-    }
-    // BSDF paths (x_0..x_k), k >= 2, whose last vertex may emit. The light densities (for
-    // the MIS weights) are only needed where the base or the offset vertex emits; the
-    // base's is the same for all four neighbours.
-    for (int k = 2; k < n; ++k) {
-      const int m = k - 1;
-      const Vertex& bv = base[k];
-      const bool has_offset = inside && k < alive;
-      const bool base_emits = !is_black(bv.emission);
-      if (!base_emits && !(has_offset && !is_black(res.path[k].emission))) continue;
-      const Rgbd fb = base_emits ? Rgbd(beta[size_t(k)] * bv.emission.cast<double>()) : Rgbd::Zero();
-      double& b_other = b_other_bsdf[size_t(k)];
-      if (std::isnan(b_other))
-        b_other = nee_at(base[m], m_settings.nee) ? pathspace::light_pdf(m_scene, base[m].p(), bv) / base[m].pdf : 0.0;
-      double c = 0, d = 0;
-      Rgbd fo = Rgbd::Zero();
-      if (has_offset) {
-        const Vertex& om = res.path[m];
-        const Vertex& ov = res.path[k];
-        c = ratio[size_t(k)];
-        d = nee_at(om, m_settings.nee)
-                ? ratio[size_t(m)] * res.jacobian[size_t(m)] * pathspace::light_pdf(m_scene, om.p(), ov) / base[m].pdf
-                : 0.0;
-        fo = beta_o[size_t(k)] * ov.emission.cast<double>();
-      }
-      accumulate(fb, fo, mis_weight(b_other, c, d, m_settings.faults.mis), has_offset);
     }
     if (!primal_i.isFinite().all() || !primal_j.isFinite().all() || !grad.isFinite().all()) {
       ++counters.nan_dropped;  // counted and dropped, never splatted

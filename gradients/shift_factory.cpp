@@ -1,0 +1,19 @@
+#include "gradients/shift_factory.h"
+
+#include "core/error.h"
+#include "gradients/manifold_shift.h"
+#include "gradients/reconnection_shift.h"
+
+namespace dp::gradients {
+
+std::unique_ptr<Shift> make_shift(const scene::Scene& scene, const ShiftChoice& c) {
+  const ReconnectionShiftOptions ro{c.threshold, scene.caps().has_glossy || scene.caps().has_specular, c.fault};
+  if (c.kind == "reconnection") return std::make_unique<ReconnectionShift>(scene, ro);
+  if (c.kind == "manifold")
+    return std::make_unique<ManifoldShift>(
+        scene, ManifoldShiftOptions{ro, {}, c.manifold_emitter_chains_only, c.manifold_walk_as_fallback});
+  if (c.kind == "identity") return std::make_unique<IdentityShift>();
+  throw ValueError("unknown shift '" + c.kind + "' (reconnection | manifold | identity)", "--set");
+}
+
+}  // namespace dp::gradients
