@@ -1,5 +1,6 @@
 #include "mcmc/chain.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dp::mcmc {
@@ -51,6 +52,7 @@ Step Chain::step() {
   } else {
     y.assign(m_x.begin(), m_x.end());
     m_opt.small_step(m_opt.kernel, y, m_rng);
+    for (size_t i = 0; i < std::min(y.size(), size_t(std::max(0, m_opt.redraw_first))); ++i) y[i] = m_rng.uniform();
     ++m_counters.small;
   }
   stream.rewind();

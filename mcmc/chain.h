@@ -38,6 +38,10 @@ struct ChainOptions {
   // Both replaced only by tests, which must detect a wrong rule or an asymmetric step.
   AcceptanceRule acceptance = metropolis_acceptance;
   SmallStep small_step = kelemen_small_step;
+  // The first `redraw_first` coordinates are drawn afresh (uniformly) by every small step
+  // too: an independent uniform proposal of those coordinates, symmetric like the rest
+  // (GD-MLT's neighbour choice, Manzi et al. 2014, Sec. 4).
+  int redraw_first = 0;
 };
 
 struct ChainCounters {

@@ -17,6 +17,10 @@ struct TargetValue {
   double f = 0;              // scalar target; NaN/Inf marks an invalid (non-finite) sample
   Rgb value = Rgb::Zero();   // splatted quantity (a path's contribution)
   Vec2 raster{0, 0};         // continuous image position of the splat (pixel = floor)
+  // Gradient-domain targets only: a second splat into row `gradient_row` of a gradient
+  // buffer (-1: none).
+  Rgb gradient = Rgb::Zero();
+  int64_t gradient_row = -1;
 
   bool valid() const { return std::isfinite(f); }
 };
