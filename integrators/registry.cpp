@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "integrators/integrator.h"
+#include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
@@ -26,6 +27,7 @@ const std::vector<Entry>& registry() {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
+      {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},
   };
   return kRegistry;
 }

@@ -19,6 +19,8 @@
 #include "reconstruct/problem.h"
 #include "reconstruct/solve.h"
 
+#include "tests/support/welch.h"
+
 namespace dp::test {
 constexpr int kRes = 16, kBlock = 4, kRuns = 10;
 
@@ -174,16 +176,6 @@ inline Blocks tracer_stats(const scene::Scene& s, const integrators::GptSettings
   return out;
 }
 
-struct Moments {
-  double mean, var;
-};
-inline Moments moments(const std::vector<double>& v) {
-  double m = 0, s2 = 0;
-  for (double x : v) m += x;
-  m /= double(v.size());
-  for (double x : v) s2 += (x - m) * (x - m);
-  return {m, s2 / double(v.size() - 1)};
-}
 // Welch's t-test of mean(a) = mean(b) at 1% significance, Sidak-corrected over `tests`:
 // t, its critical value and the standard error of the difference of the means (so a shift
 // of the difference by more than crit * se is rejected about half the time, by more than

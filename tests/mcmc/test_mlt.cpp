@@ -16,8 +16,12 @@
 #include "integrators/mlt/mlt_integrator.h"
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
+#include "tests/support/welch.h"
 
 using namespace dp;
+using test::Moments;
+using test::moments;
+using test::welch_ratio;
 
 namespace {
 constexpr int kRes = 32, kBlock = 8, kRuns = 10;
@@ -73,26 +77,6 @@ std::vector<std::vector<double>> run_stats(const scene::Scene& s, const std::str
     out[0].push_back(all / (kRes * kRes));
   }
   return out;
-}
-
-struct Moments {
-  double mean, var;
-};
-Moments moments(const std::vector<double>& v, double scale) {
-  double m = 0, s2 = 0;
-  for (double x : v) m += scale * x;
-  m /= double(v.size());
-  for (double x : v) s2 += (scale * x - m) * (scale * x - m);
-  return {m, s2 / double(v.size() - 1)};
-}
-
-// |t| / (two-sided critical value at level alpha) of a Welch test of equal means.
-double welch_ratio(const Moments& a, const Moments& b, double alpha) {
-  const double va = a.var / kRuns, vb = b.var / kRuns;
-  if (!(va + vb > 0)) return a.mean == b.mean ? 0.0 : std::numeric_limits<double>::infinity();
-  const double t = (a.mean - b.mean) / std::sqrt(va + vb);
-  const double dof = (va + vb) * (va + vb) / (va * va / (kRuns - 1) + vb * vb / (kRuns - 1));  // Welch-Satterthwaite
-  return std::abs(t) / boost::math::quantile(boost::math::complement(boost::math::students_t(dof), alpha / 2));
 }
 
 // Largest ratio over the image-mean test (alpha = 1%) and the block tests (Sidak, 1% family).

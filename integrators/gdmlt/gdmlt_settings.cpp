@@ -1,0 +1,63 @@
+#include "integrators/gdmlt/gdmlt_settings.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "reconstruct/problem.h"
+
+namespace dp::integrators {
+
+GdmltSettings GdmltSettings::read(Settings& s) {
+  GdmltSettings g;
+  g.alpha = reconstruct::kDefaultAlpha;
+  g.kernel = s.get_string("kernel", g.kernel,
+                          "gradient kernel: standard (forward differences to the 4 neighbours); adaptive "
+                          "(structure-adaptive pairs, Manzi 2014 Sec. 3.5) is not implemented yet",
+                          {"standard", "adaptive"});
+  g.shift = s.get_string("shift", g.shift,
+                         "T_1: manifold (specular chains re-solved by manifold walks, reconnection at the "
+                         "first diffuse pair; Lehtinen 2013), reconnection (G-PT's hybrid shift) or identity "
+                         "(T_0 only: gradients become finite differences of the primal)",
+                         {"manifold", "reconnection", "identity"});
+  g.shift_threshold = float(s.get_double("shift_threshold", double(g.shift_threshold),
+                                         "BSDF roughness at or below which a vertex is glossy/specular"));
+  g.mwgi = s.get_bool("mwgi", g.mwgi, "multiple weighted gradient integrals: fall back to T_0 where the "
+                                      "contributions of base and offset differ by more than mwgi_threshold (Eq. 6)");
+  g.mwgi_threshold = s.get_double("mwgi_threshold", g.mwgi_threshold, "t of Manzi 2014 Eq. 6");
+  g.incmw = s.get_bool("incmw", g.incmw,
+                       "incremental manifold walk guided by ambient occlusion (Sec. 3.4): not implemented yet");
+  g.alpha = float(s.get_double("alpha", double(g.alpha),
+                               "weight of the primal in the target f(z) and in the screened Poisson solve"));
+  g.reconstruction = s.get_string("reconstruction", g.reconstruction,
+                                  "reconstruction shown as the RGB layer (both are written as layers)", {"l1", "l2"});
+  g.mutations = s.get_string("mutations", g.mutations,
+                             "proposals for x: pss (primary-sample-space small/large steps); path "
+                             "(path-space mutations) needs the MEMLT mutators, not implemented yet",
+                             {"pss", "path"});
+  g.large_step_prob = s.get_double("large_step_prob", g.large_step_prob, "probability of a large step");
+  g.bootstrap = s.get_int("bootstrap", int(g.bootstrap), "independent samples estimating b and seeding the chains");
+  g.large_step_b = s.get_bool("large_step_b", g.large_step_b, "refine b with every large step's f");
+  g.chains = s.get_int("chains", g.chains, "independent Markov chains (0: 4 per thread)");
+  g.rr_depth = s.get_int("rr_depth", g.rr_depth, "Russian roulette only after this many path segments");
+  g.nee = s.get_bool("nee", g.nee, "next-event estimation with power-heuristic MIS");
+  g.direct_spp = s.get_int("direct_spp", g.direct_spp,
+                           "samples per pixel of the direct pass (paths of at most 2 segments), added after "
+                           "reconstruction as in the paper");
+  if (g.kernel == "adaptive")
+    throw ValueError("setting 'kernel=adaptive' is not implemented yet (use kernel=standard)", "--set");
+  if (g.incmw) throw ValueError("setting 'incmw=true' is not implemented yet", "--set");
+  if (g.mutations == "path")
+    throw ValueError("setting 'mutations=path' needs the path-space mutators (not implemented yet)", "--set");
+  if (!(g.large_step_prob > 0.0 && g.large_step_prob <= 1.0))
+    throw ValueError("setting 'large_step_prob' must be in (0, 1]", "--set");
+  if (g.bootstrap < 1) throw ValueError("setting 'bootstrap' must be >= 1", "--set");
+  if (g.chains < 0) throw ValueError("setting 'chains' must be >= 0", "--set");
+  if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
+  if (g.direct_spp < 1) throw ValueError("setting 'direct_spp' must be >= 1", "--set");
+  if (!(g.mwgi_threshold > 1.0)) throw ValueError("setting 'mwgi_threshold' must be > 1", "--set");
+  if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
+  if (!(g.shift_threshold >= 0.0f)) throw ValueError("setting 'shift_threshold' must be >= 0", "--set");
+  return g;
+}
+
+}  // namespace dp::integrators
