@@ -27,8 +27,11 @@ core::Image render_direct(const scene::Scene& scene, const GdmltSettings& s, con
   ps.nee = s.nee;
   const PathTracer tracer(scene, ps, std::min(2, options.max_depth));
   RenderOptions o = options;
-  o.time_budget = 0;
-  o.spp = s.direct_spp;
+  // direct_spp = 0 (auto): as many samples per pixel as mutations per pixel (--spp), or
+  // direct_fraction of the budget (--time). A direct path costs far less than a mutation.
+  const bool timed = options.time_budget > 0 && s.direct_spp == 0;
+  o.time_budget = timed ? s.direct_fraction * options.time_budget : 0;
+  o.spp = s.direct_spp > 0 ? s.direct_spp : std::max(1, options.spp);
   o.quiet = true;
   o.seed = core::mix64(options.seed ^ 0xD1EC'7000'0000'0001ull);
   std::vector<Rgbd> sum(size_t(w) * size_t(h), Rgbd::Zero());
