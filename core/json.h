@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <limits>
 #include <variant>
 #include <vector>
 
@@ -33,6 +34,11 @@ class Json {
   // Object access: inserts the key if missing.
   Json& operator[](const std::string& key);
   void push_back(Json v);
+  // The number held (NaN if this is not a number).
+  double number() const {
+    const double* d = std::get_if<double>(&m_value);
+    return d ? *d : std::numeric_limits<double>::quiet_NaN();
+  }
   std::string dump(int indent = 2) const;
 
  private:

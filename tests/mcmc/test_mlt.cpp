@@ -7,6 +7,7 @@
 // 1% family-wise level). The same tests must reject MLT run with a real defect: an
 // asymmetric small step (step length growing with the coordinate) without its Q ratio.
 // Also: a render is deterministic for a fixed seed and thread count.
+#include <boost/math/distributions/fisher_f.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -138,4 +139,54 @@ TEST_CASE("mlt: a render is deterministic for a fixed seed and thread count", "[
   REQUIRE(differs);  // another seed gives another image (the comparison can fail)
   REQUIRE(a.stats.get("mlt.mutations") == 8 * 16 * 16);
   REQUIRE(a.stats.get("mlt.nan_dropped") == 0);
+}
+
+// Normalisation that converges: b = mean f over the bootstrap and every large-step
+// proposal (all independent uniform primary samples), so Var(b) = sigma_f^2 / n with n =
+// bootstrap + large steps. Over R independent runs at two budgets the ratio of b's sample
+// variances must be consistent with n_2 / n_1 (two-sided F test, 1%) and significantly
+// above 1 (one-sided F test, 1%): b's error falls as 1 / sqrt(render length). With
+// large_step_b = false, b rests on the bootstrap alone and its variance does not fall: the
+// second test rejects that variant (watched: variance ratio ~1).
+namespace {
+struct BStats {
+  double var = 0;
+  double n = 0;  // bootstrap samples + large steps (mean over runs)
+};
+BStats b_spread(const scene::Scene& s, int spp, bool large_step_b) {
+  constexpr int kR = 40;
+  std::vector<double> b;
+  double n = 0;
+  for (int r = 0; r < kR; ++r) {
+    integrators::Settings settings;
+    settings.set("bootstrap", "200");
+    settings.set("large_step_b", large_step_b ? "true" : "false");
+    settings.set("chains", "4");
+    auto in = integrators::make_integrator("mlt", settings);
+    integrators::RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = 9000 + uint64_t(r);
+    opt.threads = 2;
+    opt.max_depth = 6;
+    opt.quiet = true;
+    auto res = in->render(s, opt);
+    b.push_back(res.info["b"].number());
+    n += 200.0 + (large_step_b ? double(res.stats.get("mlt.large_steps")) : 0.0);
+  }
+  return {test::moments(b).var, n / kR};
+}
+}  // namespace
+
+TEST_CASE("mlt: the normalisation b converges: its variance falls as 1 / (bootstrap + large steps)", "[stat]") {
+  const auto s = glossy_box(16);
+  const BStats a = b_spread(*s, 4, true), c = b_spread(*s, 32, true);
+  const boost::math::fisher_f F(39, 39);
+  const double ratio = a.var / c.var, expected = c.n / a.n;
+  INFO("Var(b) ratio " << ratio << ", expected n ratio " << expected);
+  CHECK(ratio / expected > boost::math::quantile(F, 0.005));
+  CHECK(ratio / expected < boost::math::quantile(F, 0.995));
+  CHECK(ratio > boost::math::quantile(F, 0.99));
+  const BStats a0 = b_spread(*s, 4, false), c0 = b_spread(*s, 32, false);
+  INFO("bootstrap only: Var(b) ratio " << a0.var / c0.var);
+  CHECK_FALSE(a0.var / c0.var > boost::math::quantile(F, 0.99));
 }
