@@ -191,3 +191,15 @@ TEST_CASE("gdmlt: with T_1 = identity every neighbour's pair sample is +-|N_i| t
   }
   REQUIRE(lit > 500);
 }
+
+TEST_CASE("gdmlt: no manifold walk where the scene has no specular chain; walks where it has", "[unit]") {
+  // The manifold shift walks only specular chains (gradients/manifold_shift.h); the
+  // rough-conductor box (alpha 0.2, above the 0.05 threshold) has none. The counter is
+  // the proof that the machinery is skipped, and the mirror/glass box shows it counts.
+  const auto diffuse = render(*glossy_box(), "gdmlt", 4, 1);
+  CHECK(diffuse.stats.get("gdmlt.manifold.walks") == 0);
+  CHECK(diffuse.stats.get("gdmlt.shift.attempted") > 0);
+  const auto specular = render(*specular_box(), "gdmlt", 4, 1);
+  CHECK(specular.stats.get("gdmlt.manifold.walks") > 0);
+  CHECK(specular.stats.get("gdmlt.nan_dropped") == 0);
+}
