@@ -58,6 +58,7 @@ ChainRunResult run_chains(const ChainSchedule& sc, const RenderOptions& options,
     busy |= timed;
     ++r.rounds;
     if (stop.load()) break;
+    if (sc.after_round) sc.after_round(r.rounds);
   }
   progress.finish();
   for (int64_t m : r.mutations) r.total_mutations += m;

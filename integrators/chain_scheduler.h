@@ -37,6 +37,8 @@ struct ChainSchedule {
   int64_t round = 1;  // mutations per chain per round
   int layers = 1;     // accumulation buffers, each `pixels` long
   int64_t pixels = 0;
+  // Optional: called on the calling thread after each round (with the rounds so far).
+  std::function<void(int64_t rounds)> after_round;
 };
 
 struct ChainRunResult {

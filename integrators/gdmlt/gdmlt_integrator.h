@@ -1,14 +1,14 @@
 // `--integrator gdmlt`: gradient-domain Metropolis light transport on the extended path
 // space (Manzi et al. 2014, Sec. 4; Lehtinen et al. 2013). Scheduling:
-//  1. direct pass: the reference path tracer restricted to paths of at most 2 segments
-//     (`direct_spp` samples per pixel), added after reconstruction as in the paper;
+//  1. direct light: the reference path tracer restricted to paths of at most 2 segments
+//     (direct_pass.h), interleaved with the chains' rounds, added after reconstruction;
 //  2. bootstrap of the extended-path-space target (mcmc/gradient_target.h): b and the
 //     chains' start states;
 //  3. `chains` primary-sample-space chains in rounds (chain_scheduler.h), the neighbour
 //     coordinate redrawn at every mutation, expected-value splatting of the primal and of
 //     the pair gradient into dx/dy (and one density count per mutation);
 //  4. screened Poisson reconstruction (L1 and L2) of the indirect image, plus the direct.
-// --spp N = N mutations per pixel on average; --time includes the direct pass and the
+// --spp N = N mutations per pixel on average; --time includes the direct light and the
 // bootstrap. Deterministic for a seed and chain count, whatever the thread count.
 #pragma once
 

@@ -42,10 +42,8 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   g.nee = s.get_bool("nee", g.nee, "next-event estimation with power-heuristic MIS");
   g.direct_spp = s.get_int("direct_spp", g.direct_spp,
                            "samples per pixel of the direct pass (paths of at most 2 segments, path tracer), added "
-                           "after reconstruction as in the paper; 0 = auto: --spp N gives N, --time gives the pass "
-                           "direct_fraction of the budget");
-  g.direct_fraction = s.get_double("direct_fraction", g.direct_fraction,
-                                   "--time with direct_spp=0: share of the budget spent on the direct pass");
+                           "after reconstruction as in the paper; 0 = auto: interleaved with the chains, one "
+                           "sample per pixel per mutation per pixel (--spp and --time)");
   if (g.kernel == "adaptive")
     throw ValueError("setting 'kernel=adaptive' is not implemented yet (use kernel=standard)", "--set");
   if (g.incmw) throw ValueError("setting 'incmw=true' is not implemented yet", "--set");
@@ -57,8 +55,6 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   if (g.chains < 0) throw ValueError("setting 'chains' must be >= 0", "--set");
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (g.direct_spp < 0) throw ValueError("setting 'direct_spp' must be >= 0 (0 = auto)", "--set");
-  if (!(g.direct_fraction > 0.0 && g.direct_fraction < 1.0))
-    throw ValueError("setting 'direct_fraction' must be in (0, 1)", "--set");
   if (!(g.mwgi_threshold > 1.0)) throw ValueError("setting 'mwgi_threshold' must be > 1", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
   if (!(g.shift_threshold >= 0.0f)) throw ValueError("setting 'shift_threshold' must be >= 0", "--set");

@@ -28,7 +28,6 @@ struct GdmltSettings {
   int rr_depth = 5;
   bool nee = true;
   int direct_spp = 0;               // direct pass (paths of <= 2 segments): spp; 0 = auto (see .cpp)
-  double direct_fraction = 0.25;    // --time with direct_spp = 0: share of the budget for the direct pass
   // Not a --set key: tests' negative controls (a render with it must be rejected as biased).
   gradients::JacobianFault fault = gradients::JacobianFault::none;
 

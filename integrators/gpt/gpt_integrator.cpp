@@ -4,9 +4,9 @@
 #include "core/timer.h"
 #include "gradients/gradient_buffers.h"
 #include "integrators/gpt/gpt_tracer.h"
+#include "integrators/gradient_output.h"
 #include "integrators/tile_scheduler.h"
 #include "pathspace/sample_stream.h"
-#include "reconstruct/solve.h"
 
 namespace dp::integrators {
 
@@ -70,30 +70,10 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
   RenderResult result;
   for (const auto& s : thread_stats) result.stats.merge(s);
 
-  const core::Image primal = total.primal(), dx = total.dx(), dy = total.dy(), direct = total.direct();
   // Screened Poisson reconstruction without the direct layer (Lehtinen 2013, Eq. 8; Kettunen
   // 2015, Sec. 6), which is added back afterwards.
-  const reconstruct::Problem problem = reconstruct::make_grid_problem(primal, dx, dy, m_settings.alpha);
-  reconstruct::SolveOptions sopt;
-  sopt.threads = threads;
-  core::Timer solve_timer;
-  core::Image l2 = reconstruct::solve_l2(problem, sopt).image;
-  const double l2_seconds = solve_timer.seconds();
-  solve_timer.reset();
-  core::Image l1 = reconstruct::solve_l1(problem, sopt).image;
-  const double l1_seconds = solve_timer.seconds();
-  l2 += direct;
-  l1 += direct;
-  core::Image primal_full = primal;
-  primal_full += direct;
-
-  result.layers.push_back({"", m_settings.reconstruction == "l2" ? l2 : l1});
-  result.layers.push_back({"recon_l1", std::move(l1)});
-  result.layers.push_back({"recon_l2", std::move(l2)});
-  result.layers.push_back({"primal", std::move(primal_full)});
-  result.layers.push_back({"dx", dx});
-  result.layers.push_back({"dy", dy});
-  result.layers.push_back({"direct", direct});
+  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), m_settings.alpha,
+                      m_settings.reconstruction, threads, result);
   result.wall_seconds = timer.seconds();
   int64_t lo = total.samples(0, 0), hi = lo;
   for (int y = 0; y < h; ++y)
@@ -107,8 +87,6 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
   result.info["passes"] = passes;
   result.info["passes_kept"] = committed;
   result.info["render_seconds"] = render_seconds;
-  result.info["solve_l2_seconds"] = l2_seconds;
-  result.info["solve_l1_seconds"] = l1_seconds;
   result.info["settings"] = m_json;
   return result;
 }

@@ -132,7 +132,7 @@ void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_contro
 
   if (!negative_control) return;
   // The same tests reject gdmlt with every shift Jacobian forced to 1 (watched: image
-  // worst |t|/crit 1.56, gradients 1.83 on the rough-conductor box; on the mirror/glass
+  // worst |t|/crit 1.66, gradients 1.89 on the rough-conductor box; on the mirror/glass
   // box the same defect reaches only 1.2 / 1.03 -- its specular chains' walks and copies
   // carry Jacobians near 1 over most of the image -- so it is not a control there). Power: the L2 image mean's
   // standard error is ~0.14-0.35% of the mean, a block's ~4x that; with the Sidak

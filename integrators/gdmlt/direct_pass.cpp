@@ -1,0 +1,67 @@
+#include "integrators/gdmlt/direct_pass.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include "integrators/tile_scheduler.h"
+
+namespace dp::integrators {
+
+namespace {
+PathSettings direct_settings(const GdmltSettings& s) {
+  PathSettings ps;
+  ps.rr_depth = s.rr_depth;
+  ps.nee = s.nee;
+  return ps;
+}
+}  // namespace
+
+DirectPass::DirectPass(const scene::Scene& scene, const GdmltSettings& settings, const RenderOptions& options)
+    : m_scene(scene),
+      m_tracer(scene, direct_settings(settings), std::min(2, options.max_depth)),
+      m_opt(options),
+      m_w(scene.camera().width()),
+      m_h(scene.camera().height()),
+      m_sum(size_t(m_w) * size_t(m_h), Rgbd::Zero()),
+      m_count(size_t(m_w) * size_t(m_h), 0) {
+  m_opt.time_budget = 0;
+  m_opt.quiet = true;
+}
+
+void DirectPass::render(int spp) {
+  if (spp <= 0) return;
+  RenderOptions o = m_opt;
+  o.spp = spp;
+  // Mixed before the pass index is added: seed ^ (c + pass) would give run s's pass p+1 the
+  // stream of run s^1's pass p (independent renders sharing samples: caught by test_gdmlt).
+  o.seed = core::mix64(core::mix64(m_opt.seed ^ 0xD1EC'7000'0000'0001ull) + uint64_t(m_passes++));
+  std::atomic<int64_t> dropped{0};
+  const auto& cam = m_scene.camera();
+  const ScheduleResult sched = run_tiles(m_w, m_h, o, "gdmlt direct", [&](const Tile& tile, int n, core::Rng& rng, int) {
+    PathCounters counters;
+    int64_t bad = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        for (int i = 0; i < n; ++i) {
+          const Vec2 raster(float(x) + rng.uniform(), float(y) + rng.uniform());
+          const Rgb L = m_tracer.radiance(cam.generate_ray(raster), rng, counters);
+          if (is_finite(L)) m_sum[size_t(y) * size_t(m_w) + size_t(x)] += L.cast<double>();
+          else ++bad;  // counted and dropped, never splatted
+        }
+    dropped.fetch_add(bad);
+  });
+  for (int y = 0; y < m_h; ++y)
+    for (int x = 0; x < m_w; ++x) m_count[size_t(y) * size_t(m_w) + size_t(x)] += sched.spp_at(x, y);
+  m_dropped += dropped.load();
+  m_spp += spp;
+  m_partial |= sched.partial;
+}
+
+core::Image DirectPass::image() const {
+  core::Image img(m_w, m_h);
+  for (size_t i = 0; i < m_sum.size(); ++i)
+    if (m_count[i] > 0) img(int(i % size_t(m_w)), int(i / size_t(m_w))) = (m_sum[i] / double(m_count[i])).cast<float>();
+  return img;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,19 @@
+// The end of every gradient-domain integrator (G-PT, GD-MLT): screened Poisson
+// reconstruction of (primal, dx, dy) in L2 and L1 (Lehtinen et al. 2013, Eq. 8; Manzi et
+// al. 2014, Eq. 8), the separately rendered direct light added afterwards, and the
+// layers "" (the chosen reconstruction), recon_l1, recon_l2, primal (+ direct), dx, dy,
+// direct, with the solve times in info.
+#pragma once
+
+#include <string>
+
+#include "core/image_io.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+void add_gradient_layers(const core::Image& primal, const core::Image& dx, const core::Image& dy,
+                         const core::Image& direct, float alpha, const std::string& shown, int threads,
+                         RenderResult& result);
+
+}  // namespace dp::integrators
