@@ -1,11 +1,14 @@
 // PrimarySampleStream: building a path, then replaying its recorded primary samples,
 // gives the identical path; a mutated coordinate gives a different one (so the
 // comparison can fail). Also checks the path convention (camera first) and that the
-// walk's f/p matches the contribution helpers.
+// walk's f/p (emission_estimate, from the recorded sample weights, pdfs and roulette)
+// matches the measurement contribution over the area-measure density built from their
+// definitions (BSDF eval/pdf, geometry terms, Veach 1997 Eq. 8.7 and 8.10).
 #include <catch2/catch.hpp>
 
 #include "pathspace/measure.h"
 #include "pathspace/path_builder.h"
+#include "pathspace/scatter.h"
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
@@ -23,6 +26,40 @@ bool same_path(const pathspace::Path& a, const pathspace::Path& b) {
   }
   return true;
 }
+
+// f(x) / p(x) of the BSDF path x_0..x_k (x_k emitting toward x_{k-1}) from the definitions:
+//   f = Le(x_k -> x_{k-1}) prod_{m=1}^{k-1} f_s(x_m) G(x_m, x_{m+1}),
+//   p = prod_{m=1}^{k-1} pdf_sigma(x_m) |cos θ_{m+1}| / d_m^2 * rr_m,
+// with f_s and pdf_sigma re-evaluated by the BSDF (not the values the walk recorded) and
+// the camera segment's W_e G / p = 1 (box filter, measure.h). Only for paths whose
+// scattering vertices x_1..x_{k-1} are all non-Dirac (eval has no Dirac lobes).
+Rgbd fp_from_definitions(const pathspace::Path& path, int k) {
+  Rgbd f = path[k].emission.cast<double>();
+  double p = 1.0;
+  for (int m = 1; m < k; ++m) {
+    const pathspace::Vertex& v = path[m];
+    const auto ctx = pathspace::radiance_context(v.hit);
+    f *= v.hit.bsdf->eval(ctx, v.wi, v.wo).cast<double>() * pathspace::geometry_term(v, path[m + 1]);
+    p *= double(v.hit.bsdf->pdf(ctx, v.wi, v.wo)) * pathspace::solid_angle_to_area(v, path[m + 1]) * double(v.rr);
+  }
+  return f / p;
+}
+
+// The same for the NEE path (x_0..x_k, y = nee[k]) on an area light: the last factor is
+// f_s(x_k) G(x_k, y) Le(y) over the light pdf converted to area, pdf_sigma |cos θ_y| / d^2.
+Rgbd nee_fp_from_definitions(const pathspace::Path& path, int k) {
+  const pathspace::LightSample& ls = path.nee[size_t(k)];
+  pathspace::Vertex y;
+  y.hit.p = ls.p;
+  y.hit.ng = ls.n;
+  const pathspace::Vertex& v = path[k];
+  const Rgbd f_last = v.hit.bsdf->eval(pathspace::radiance_context(v.hit), v.wi, ls.wo).cast<double>() *
+                      pathspace::geometry_term(v, y) * ls.radiance.cast<double>();
+  const double p_last = ls.pdf * pathspace::solid_angle_to_area(v, y);
+  pathspace::Path prefix = path;  // x_0..x_k with x_k "emitting" 1: the prefix's f / p
+  prefix[k].emission = Rgb::Ones();
+  return fp_from_definitions(prefix, k) * f_last / p_last;
+}
 }  // namespace
 
 TEST_CASE("pathspace: replaying recorded primary samples rebuilds the identical path", "[unit]") {
@@ -34,7 +71,7 @@ TEST_CASE("pathspace: replaying recorded primary samples rebuilds the identical 
   opt.rr_depth = 3;
   const pathspace::PathBuilder builder(*s, opt);
   core::Rng rng(5, 1);
-  int compared = 0, long_paths = 0, mutated_differs = 0;
+  int compared = 0, long_paths = 0, mutated_differs = 0, fp_checked = 0;
   for (int i = 0; i < 200; ++i) {
     pathspace::PrimarySampleStream pss(rng);
     pathspace::Path a, b, c;
@@ -47,6 +84,31 @@ TEST_CASE("pathspace: replaying recorded primary samples rebuilds the identical 
     REQUIRE(same_path(a, b));
     ++compared;
     long_paths += a.size() > 3;
+    // The walk's f/p of every emitting BSDF path and NEE path against the definitions. Tolerance: the
+    // recorded weights are float (relative rounding ~6e-8 per operation, a few dozen
+    // operations per vertex, at most 11 vertices), the definition is double from float
+    // inputs: 1e-4 relative is ~10x that; a missing cosine, pdf or roulette factor is O(1).
+    for (int k = 2; k < a.size(); ++k) {
+      bool smooth = a[k].is_surface() && !is_black(a[k].emission);
+      for (int m = 1; m < k && smooth; ++m) smooth = a[m].continued() && !a[m].delta_lobe();
+      if (!smooth) continue;
+      const Rgbd walk = pathspace::emission_estimate(a, k).cast<double>();
+      const Rgbd def = fp_from_definitions(a, k);
+      INFO("path " << i << " depth " << k << ": walk f/p " << walk.transpose() << ", definition " << def.transpose());
+      REQUIRE(((walk - def).abs() <= 1e-4 * def.abs().max(1e-6)).all());
+      ++fp_checked;
+    }
+    for (int k = 1; k < a.size(); ++k) {
+      const pathspace::LightSample& ls = a.nee[size_t(k)];
+      bool smooth = ls.valid && ls.visible && !ls.delta && !ls.infinite && ls.pdf > 0 && !is_black(ls.f_cos);
+      for (int m = 1; m < k && smooth; ++m) smooth = a[m].continued() && !a[m].delta_lobe();
+      if (!smooth) continue;
+      const Rgbd walk = pathspace::nee_estimate(a, k).cast<double>();
+      const Rgbd def = nee_fp_from_definitions(a, k);
+      INFO("path " << i << " NEE at " << k << ": walk f/p " << walk.transpose() << ", definition " << def.transpose());
+      REQUIRE(((walk - def).abs() <= 1e-4 * def.abs().max(1e-6)).all());
+      ++fp_checked;
+    }
     // Mutating the first BSDF coordinate of x_1 changes the path (the test can fail).
     if (a.size() > 2 && a[1].continued() && !a[1].delta_lobe() && pss.samples().size() > 6) {
       pss.mutable_samples()[6] = std::fmod(pss.samples()[6] + 0.37f, 1.0f);
@@ -55,8 +117,10 @@ TEST_CASE("pathspace: replaying recorded primary samples rebuilds the identical 
       mutated_differs += !same_path(a, c);
     }
   }
-  INFO("compared " << compared << ", long " << long_paths << ", mutated & different " << mutated_differs);
+  INFO("compared " << compared << ", long " << long_paths << ", mutated & different " << mutated_differs
+                    << ", f/p checked " << fp_checked);
   REQUIRE(long_paths > 20);
+  REQUIRE(fp_checked > 20);
   REQUIRE(mutated_differs > 20);
 }
 
