@@ -50,6 +50,10 @@ PairKernel adaptive_kernel(const Features& features, const AffinityParams& param
   // P: chosen[i] = the n most similar pixels of i (sorted by index for lookups), and the
   // row of each ij in P: {a = j, b = i}, i.e. I_i - I_j (Manzi et al. 2014, Sec. 3.5).
   std::vector<int32_t> chosen_begin(size_t(n) + 1, 0), chosen, chosen_row;
+  const size_t max_pairs = size_t(n) * size_t(params.neighbours);
+  chosen.reserve(max_pairs);
+  chosen_row.reserve(max_pairs);
+  k.rows.reserve(max_pairs);
   for (int32_t i = 0; i < n; ++i) {
     std::vector<int32_t> js = most_similar(features, i, params);
     std::sort(js.begin(), js.end());
@@ -66,18 +70,25 @@ PairKernel adaptive_kernel(const Features& features, const AffinityParams& param
     const auto it = std::lower_bound(b, e, j);
     return (it != e && *it == j) ? chosen_row[size_t(it - chosen.begin())] : -1;
   };
-  // chosen_by[i] = {k : ki in P}, ascending k.
-  std::vector<std::vector<int32_t>> chosen_by(static_cast<size_t>(n));
-  for (int32_t i = 0; i < n; ++i)
-    for (int32_t c = chosen_begin[size_t(i)]; c < chosen_begin[size_t(i) + 1]; ++c)
-      chosen_by[size_t(chosen[size_t(c)])].push_back(i);
+  // chosen_by: {k : ki in P} for every i, ascending k, in CSR form (counting sort).
+  std::vector<int32_t> by_begin(size_t(n) + 1, 0), chosen_by(chosen.size());
+  for (int32_t j : chosen) ++by_begin[size_t(j) + 1];
+  for (size_t i = 0; i < size_t(n); ++i) by_begin[i + 1] += by_begin[i];
+  {
+    std::vector<int32_t> fill(by_begin.begin(), by_begin.end() - 1);
+    for (int32_t i = 0; i < n; ++i)
+      for (int32_t c = chosen_begin[size_t(i)]; c < chosen_begin[size_t(i) + 1]; ++c)
+        chosen_by[size_t(fill[size_t(chosen[size_t(c)])]++)] = i;
+  }
 
   // N_i = {j : ij in P or ji in P} (Sec. 4), with the row pixel i writes and its sign.
+  k.offsets.reserve(size_t(n) + 1);
   k.offsets.assign(1, 0);
+  k.entries.reserve(2 * max_pairs);
   std::vector<int32_t> ns;
   for (int32_t i = 0; i < n; ++i) {
     ns.assign(chosen.begin() + chosen_begin[size_t(i)], chosen.begin() + chosen_begin[size_t(i) + 1]);
-    ns.insert(ns.end(), chosen_by[size_t(i)].begin(), chosen_by[size_t(i)].end());
+    ns.insert(ns.end(), chosen_by.begin() + by_begin[size_t(i)], chosen_by.begin() + by_begin[size_t(i) + 1]);
     std::sort(ns.begin(), ns.end());
     ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
     for (int32_t j : ns) {
