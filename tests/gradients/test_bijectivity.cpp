@@ -4,7 +4,12 @@
 // the two directions must multiply to 1. Scenes: diffuse, glossy (rough conductor
 // below the threshold), mirror, glass, and mixed. Also: IdentityShift is exact.
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "gradients/reconnection_shift.h"
 #include "pathspace/path_builder.h"
@@ -14,10 +19,78 @@
 
 using namespace dp;
 
+namespace dp::test {
+
+// Per-sample bound on |J(x) J^-1(T(x)) - 1| (first order), shared with
+// test_manifold_shift.cpp. With T^-1(T(x)) = x exactly, both Jacobians would be computed
+// from the same vertices and multiply to 1 up to double round-off (1e-15, floor 1e-12).
+// They are not: the reverse shift re-traces x' in float, and both read float data.
+//  * Each factor of J (jacobians.h) is a ratio of squared distances, cosines |n.w| and
+//    half-vector products |w.h|. Moving vertex k by e_k turns the directions at it by
+//    e_k / d_k (d_k: its shorter adjacent segment): the squared distances of its two
+//    segments change by 2 e_k / d_k each (relative), the up to four cosines at the ends of
+//    those segments and its half-vector product by e_k / (d_k c_k) each (c_k: the
+//    smallest of them): at most 9 e_k / (d_k c_k) in ln J.
+//  * e_k = |x'_k - x_k| (measured) + the float rounding of x_k's position and of its
+//    direction over d_k, 2^-24 (|x_k|_inf + d_k), twice (base and re-traced).
+//  * A Dirac vertex with curvature kappa_k (a sphere: 1 / r) turns a position error
+//    into twice the normal's angle, 2 kappa_k e, in the reflected (refracted: at most as
+//    much for eta < 2) direction; over the next segment l_k the later vertices move by
+//    2 kappa_k l_k e more: the bound is multiplied by prod (1 + 2 kappa_k l_k) over the
+//    path's Dirac vertices (manifold walks solve such chains).
+// One vertex p (moved by e) with the segments to `ends`; c: the smallest |cos| of the
+// segments against the normals at both of their ends and `c_extra` (|w.h|, or 1).
+double jj_vertex_term(double e, const Vec3d& p, const Vec3d& n, const std::vector<std::pair<Vec3d, Vec3d>>& ends,
+                      double c_extra) {
+  double d = 1e300, c = std::min(1.0, c_extra);
+  for (const auto& [q, nq] : ends) {
+    const Vec3d w = (q - p).normalized();
+    d = std::min(d, (q - p).norm());
+    c = std::min(c, std::abs(n.dot(w)));
+    if (nq != Vec3d::Zero()) c = std::min(c, std::abs(nq.dot(w)));
+  }
+  const double rounding = 2 * std::ldexp(1.0, -24) * (p.cwiseAbs().maxCoeff() + d);
+  return 9 * (e + rounding) / (d * c);
+}
+
+double jj_tolerance(const pathspace::Path& x, const pathspace::Path& x_back, int n) {
+  auto normal = [&](int j) { return x[j].is_surface() ? x[j].hit.ng.cast<double>() : Vec3d(Vec3d::Zero()); };
+  double sum = 0, gain = 1;
+  for (int k = 1; k < n; ++k) {
+    const pathspace::Vertex& v = x[k];
+    std::vector<std::pair<Vec3d, Vec3d>> ends = {{x[k - 1].p().cast<double>(), normal(k - 1)}};
+    if (k + 1 < x.size()) ends.emplace_back(x[k + 1].p().cast<double>(), normal(k + 1));
+    double c_h = 1;
+    if (k + 1 < x.size() && v.continued() && !v.delta_lobe()) {
+      const Vec3d h = (v.wi + v.wo).cast<double>().normalized();
+      c_h = std::abs(v.wo.cast<double>().dot(h));
+    }
+    const double e = (x_back[k].p() - v.p()).cast<double>().norm();
+    sum += jj_vertex_term(e, v.p().cast<double>(), normal(k), ends, c_h);
+    if (v.delta_lobe() && k + 1 < x.size()) {
+      double kappa = 0;
+      const scene::SurfaceHit& hit = v.hit;
+      if (hit.dpdu.norm() > 0) kappa = std::max(kappa, double(hit.dndu.norm() / hit.dpdu.norm()));
+      if (hit.dpdv.norm() > 0) kappa = std::max(kappa, double(hit.dndv.norm() / hit.dpdv.norm()));
+      gain *= 1 + 2 * kappa * (x[k + 1].p() - v.p()).cast<double>().norm();
+    }
+  }
+  return sum * gain + 1e-12;
+}
+
+}  // namespace dp::test
+
 namespace {
 struct Counts {
   int checked = 0, reverse_ok = 0, half_vector = 0, dirac = 0, reconnect = 0, nee = 0;
   double worst_pos = 0, worst_jac = 0;
+  int jac_over = 0;            // J J^-1 products beyond their per-sample bound (test::jj_tolerance)
+  double worst_jac_ratio = 0;  // largest |J J^-1 - 1| / bound
+  void jac(double jj, double bound) {
+    worst_jac = std::max(worst_jac, jj);
+    worst_jac_ratio = std::max(worst_jac_ratio, jj / bound);
+    jac_over += !(jj <= bound);
+  }
 };
 
 Counts roundtrip(const scene::Scene& s, float threshold, int samples) {
@@ -56,20 +129,30 @@ Counts roundtrip(const scene::Scene& s, float threshold, int samples) {
       if (y.nee[size_t(k)].valid && rev.nee_ok(k)) {
         ++c.nee;
         c.worst_pos = std::max(c.worst_pos, double((rev.path.nee[size_t(k)].p - x.nee[size_t(k)].p).norm()));
-        c.worst_jac = std::max(c.worst_jac, std::abs(fwd.nee_jacobian[size_t(k)] * rev.nee_jacobian[size_t(k)] - 1.0));
+        // The prefix x_1..x_k and the light point (moved by |dl|, its segment to x_k).
+        const pathspace::LightSample& l = x.nee[size_t(k)];
+        const double dl = double((rev.path.nee[size_t(k)].p - l.p).norm());
+        const double bound =
+            test::jj_tolerance(x, rev.path, k + 1) +
+            (l.infinite || l.delta ? 0.0
+                                   : test::jj_vertex_term(dl, l.p.cast<double>(), l.n.cast<double>(),
+                                                          {{x[k].p().cast<double>(), x[k].hit.ng.cast<double>()}}, 1.0));
+        c.jac(std::abs(fwd.nee_jacobian[size_t(k)] * rev.nee_jacobian[size_t(k)] - 1.0), bound);
       } else if (y.nee[size_t(k)].valid && !x.nee[size_t(k)].infinite) {
         c.worst_pos = std::max(c.worst_pos, 1.0);  // forward NEE shift exists, reverse does not
       }
     }
-    c.worst_jac = std::max(c.worst_jac, std::abs(fwd.prefix_jacobian(y.size() - 1) * rev.prefix_jacobian(y.size() - 1) - 1.0));
+    c.jac(std::abs(fwd.prefix_jacobian(y.size() - 1) * rev.prefix_jacobian(y.size() - 1) - 1.0),
+          test::jj_tolerance(x, rev.path, y.size()));
   }
   return c;
 }
 
 void report(const char* name, const Counts& c) {
   std::printf("bijectivity %-8s checked %d reverse-ok %d  steps: reconnect %d half-vector %d dirac %d, nee %d  "
-              "worst |dx| %.2e worst |J J^-1 - 1| %.2e\n",
-              name, c.checked, c.reverse_ok, c.reconnect, c.half_vector, c.dirac, c.nee, c.worst_pos, c.worst_jac);
+              "worst |dx| %.2e worst |J J^-1 - 1| %.2e (%d beyond the bound, worst %.2f of it)\n",
+              name, c.checked, c.reverse_ok, c.reconnect, c.half_vector, c.dirac, c.nee, c.worst_pos, c.worst_jac,
+              c.jac_over, c.worst_jac_ratio);
 }
 
 scene::BsdfPtr glossy() {
@@ -98,7 +181,11 @@ TEST_CASE("shift bijectivity T^-1(T(x)) = x on diffuse, glossy, mirror, glass an
     REQUIRE(c.checked > 1000);
     REQUIRE(c.reverse_ok == c.checked);
     REQUIRE(c.worst_pos < 2e-3);
-    REQUIRE(c.worst_jac < 2e-2);
+    // J J^-1 = 1 within each sample's first-order bound test::jj_tolerance (was: worst
+    // < 2e-2 over all samples, observed 3.8e-4; now worst 0.19 of its bound). Detects a
+    // path Jacobian off by a factor 1 + 1e-5 in one direction (seen failing: 138 diffuse
+    // samples beyond their bound; 1 + 1e-4: 2540).
+    REQUIRE(c.jac_over == 0);
     REQUIRE(c.reconnect > 100);
     if (std::string(cs.name) == "glossy" || std::string(cs.name) == "mixed") REQUIRE(c.half_vector > 10);
     if (std::string(cs.name) == "mirror" || std::string(cs.name) == "glass") REQUIRE(c.dirac > 10);
