@@ -24,14 +24,27 @@
 //    test requires drops inside the central interval of that binomial at a two-sided
 //    false-alarm level of 1e-6 (it fails if an integrator drops finite paths too, or
 //    lets NaN paths into the image: the finiteness check catches those).
-//    (PT's random stream is per tile, so a NaN sample that consumed a different count
-//    of numbers would shift the tile's later paths; checked over seeds 1..10 at 32x32,
-//    64 spp: mean drops 407 vs. p D1 = 401, sd of that mean 6; at p = 0.5 4013 vs 4010.)
+//    Why the two renders trace the same paths: at max_depth 2 no path's use of the
+//    tile's random stream depends on a NaN (next_event() draws its 3 numbers before any
+//    early return, sample() its 3 unconditionally, Russian roulette starts at depth
+//    rr_depth = 5 and the depth-2 vertex ends the walk before any draw), so the set of
+//    D1 "NaN-reachable" paths is the same at p and at 1; what is left random is the hash
+//    of each path's wi, treated as an independent uniform 64-bit value (splitmix64 of
+//    distinct float bits). Beyond depth 2 this breaks (a NaN throughput changes the RR
+//    draws and the number of bounces), which is why the binomial case is depth 2 only.
+//    (Cross-check over seeds 1..10 at 32x32, 64 spp: mean drops 407 vs. p D1 = 401, sd
+//    of that mean 6; at p = 0.5 4013 vs 4010. Seed 7: D1 8040, drops 438, interval
+//    [309, 501].)
 //    Power: D1 ~ 8000, so the interval is p D1 +- ~5 sd = 400 +- ~100: counting each
 //    drop twice, or dropping every sphere path, fails.
 //  * Watched failing: a local copy of path_integrator.cpp that counted non-finite paths
 //    but splatted them (linked over the library's object, not committed) gave 16
-//    non-finite pixels in the first test and 169 / 147 in the binomial one.
+//    non-finite pixels in the first test and 169 / 147 in the binomial one; a local copy
+//    of gpt_tracer.cpp without the `continue` after its finiteness check (counted but
+//    splatted) gave 420 non-finite pixels over G-PT's layers.
+//  * Not covered: a partial under-count in G-PT or the MCMC integrators (e.g. mlt
+//    forgetting the bootstrap's invalid samples) stays within 0 < drops <= injected;
+//    only PT has an exact lower bound (the binomial case).
 #include <catch2/catch.hpp>
 
 #include <boost/math/distributions/binomial.hpp>
