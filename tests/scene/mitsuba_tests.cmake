@@ -5,8 +5,9 @@ dp_add_test(test_mitsuba
   DEPS deltapath_scene deltapath_integrators ZLIB::ZLIB
   LABELS unit)
 # The public reference scenes (../shared/scenes, or $DP_SHARED_SCENES) in their own
-# executable: when the folder is absent it exits with 77 before any test case runs, and
-# ctest reports the tests as skipped, not passed.
+# executable: when the folder is absent its first test case exits with 77 before any
+# assertion, and ctest reports the tests as skipped, not passed (try:
+# DP_SHARED_SCENES=/nonexistent ctest -R test_mitsuba_scenes).
 dp_add_test(test_mitsuba_scenes
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_mitsuba_scenes.cpp
   DEPS deltapath_scene deltapath_integrators Boost::boost
