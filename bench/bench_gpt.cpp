@@ -111,7 +111,9 @@ void diagnose(const scene::Scene& s, const std::string& path_name, int n) {
   const pathspace::PathBuilder builder(s, wo);
   const gradients::ReconnectionShiftOptions ro{wo.shift_threshold, true};
   const gradients::ReconnectionShift rs(s, ro);
-  const gradients::ManifoldShift ms(s, {ro, {}});
+  gradients::ManifoldShiftOptions mo;
+  mo.reconnection = ro;
+  const gradients::ManifoldShift ms(s, mo);
   const gradients::Shift* shifts[2] = {&rs, &ms};
   struct Acc {
     int64_t paths = 0, dark = 0;

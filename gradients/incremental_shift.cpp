@@ -63,20 +63,29 @@ bool IncrementalManifoldShift::applies(const Path& base, int k, const ShiftResul
 
 void IncrementalManifoldShift::shift(const Path& base, const Vec2& raster_offset, ShiftResult& out) const {
   ReconnectionShift::shift(base, raster_offset, out);
-  // NEE paths ending at declared vertices have no representable offset (header): fail.
-  for (int k = 1; k < out.alive && out.reconnected > 0 && k < out.reconnected; ++k)
-    if (out.step[size_t(k - 1)] == StepKind::manifold) {
-      out.path.nee[size_t(k)] = pathspace::LightSample();
-      out.nee_status[size_t(k)] = ShiftStatus::not_invertible;
-      out.nee_step[size_t(k)] = StepKind::none;
-      out.nee_jacobian[size_t(k)] = 1.0;
-    }
+  drop_declared_nee(out);
+}
+
+void drop_declared_nee(ShiftResult& out) {
+  // The declared vertices are y_1 .. y_{r-1} = x_{c - declared} .. x_{c-1}, c = reconnected.
+  if (out.declared <= 0 || out.reconnected <= 0) return;
+  for (int k = std::max(1, out.reconnected - out.declared); k < out.alive && k < out.reconnected; ++k) {
+    out.path.nee[size_t(k)] = pathspace::LightSample();
+    out.nee_status[size_t(k)] = ShiftStatus::not_invertible;
+    out.nee_step[size_t(k)] = StepKind::none;
+    out.nee_jacobian[size_t(k)] = 1.0;
+  }
+}
+
+std::optional<ShiftStatus> IncrementalManifoldShift::declared_step(const Path& base, int k, ShiftResult& out) const {
+  if (!applies(base, k, out) || !declarable(base[k + 1]) || !m_decide(base[k].p(), out.path[k].p()))
+    return std::nullopt;
+  return walk_vertices(base, k, out);
 }
 
 ShiftStatus IncrementalManifoldShift::step(const Path& base, int k, ShiftResult& out) const {
-  if (!applies(base, k, out) || !declarable(base[k + 1]) || !m_decide(base[k].p(), out.path[k].p()))
-    return ReconnectionShift::step(base, k, out);  // y_1 not declared: reconnect at x_{k+1}
-  return walk_vertices(base, k, out);
+  if (const auto s = declared_step(base, k, out)) return *s;
+  return ReconnectionShift::step(base, k, out);  // y_1 not declared: reconnect at x_{k+1}
 }
 
 ShiftStatus IncrementalManifoldShift::walk_vertices(const Path& base, int k, ShiftResult& out) const {
@@ -191,6 +200,7 @@ ShiftStatus IncrementalManifoldShift::walk_vertices(const Path& base, int k, Shi
   for (int j = k; j < m; ++j) out.step[size_t(j)] = j < c ? StepKind::manifold : StepKind::none;
   for (int i = 0; i < r; ++i) out.jacobian[size_t(k + i)] = reported_jacobian(factors[size_t(i)], m_opt.fault, false);
   out.reconnected = c;
+  out.declared = r - 1;
   return ShiftStatus::ok;
 }
 

@@ -54,6 +54,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "gradients/reconnection_shift.h"
@@ -86,6 +87,10 @@ class IncrementalManifoldShift final : public ReconnectionShift {
   bool declarable(const pathspace::Vertex& v) const;
   // Does the strategy examine y_1 = x_{k+1} at base vertex k (offset prefix ends at x'_k)?
   bool applies(const pathspace::Path& base, int k, const ShiftResult& out) const;
+  // The incremental step at base vertex k where y_1 is declared; nullopt where it is not
+  // (the caller's own step applies: ReconnectionShift's here, ManifoldShift's when it
+  // composes INCMW with its specular-chain walks, manifold_shift.h).
+  std::optional<ShiftStatus> declared_step(const pathspace::Path& base, int k, ShiftResult& out) const;
 
  protected:
   ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const override;
@@ -95,6 +100,10 @@ class IncrementalManifoldShift final : public ReconnectionShift {
   IncrementalShiftOptions m_inc;
   OcclusionDecision m_decide;
 };
+
+// NEE paths ending at declared vertices have no representable offset (header): fails
+// them in a finished shift (out.declared, out.reconnected).
+void drop_declared_nee(ShiftResult& out);
 
 // Per-direction solid-angle factors (header, "Jacobian") of an incremental walk:
 // factors[j], j = 0..r-1 (r = result.reconnect). False if a segment is degenerate.

@@ -126,6 +126,11 @@ std::optional<Chain> ManifoldShift::make_chain(const Path& base, int k, int m) c
   return ch;
 }
 
+void ManifoldShift::shift(const Path& base, const Vec2& raster_offset, ShiftResult& out) const {
+  ReconnectionShift::shift(base, raster_offset, out);
+  drop_declared_nee(out);
+}
+
 ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const {
   // A chain start (header, "Strategy"): the offset's x'_k made, not reconnected, base x_k
   // connectable with a sampled (non-delta) direction toward a vertex that is not.
@@ -133,7 +138,11 @@ ShiftStatus ManifoldShift::step(const Path& base, int k, ShiftResult& out) const
   const bool chain_start = k >= 1 && k + 1 < n && out.reconnected < 0 && out.path.size() == k + 1 &&
                            base[k].connectable && !base[k].delta_lobe() && !base[k + 1].connectable &&
                            out.path[k].connectable;
-  if (!chain_start) return ReconnectionShift::step(base, k, out);
+  if (!chain_start) {
+    if (m_incremental)
+      if (const auto s = m_incremental->declared_step(base, k, out)) return *s;
+    return ReconnectionShift::step(base, k, out);
+  }
   const int eligible = chain_end(base, k, out);
   if (eligible >= 0 && !m_walk_as_fallback) return walk_chain(base, k, eligible, out);
   int m = k + 1;

@@ -57,6 +57,9 @@
 // would bias the symmetric MIS.
 #pragma once
 
+#include <memory>
+
+#include "gradients/incremental_shift.h"
 #include "gradients/reconnection_shift.h"
 #include "manifold/walk.h"
 
@@ -75,6 +78,12 @@ struct ManifoldShiftOptions {
   // Walk a chain only where the half-vector copy of the whole chain does not stay on the
   // base's shapes (false: walk every eligible chain). See "Strategy" above.
   bool walk_as_fallback = true;
+  // Optional INCMW (Manzi et al. 2014, Sec. 3.4; incremental_shift.h): where this shift
+  // would reconnect at x_{k+1} and `incremental` declares x_{k+1} specular, its
+  // incremental walk makes the step instead. Null: Lehtinen 2013's T_1 alone. The two
+  // strategies never compete for a vertex: a specular-chain start has x_{k+1} not
+  // connectable, INCMW needs it connectable.
+  std::shared_ptr<const IncrementalManifoldShift> incremental;
 };
 
 class ManifoldShift final : public ReconnectionShift {
@@ -83,8 +92,10 @@ class ManifoldShift final : public ReconnectionShift {
       : ReconnectionShift(scene, options.reconnection),
         m_walk(options.walk),
         m_emitter_chains_only(options.emitter_chains_only),
-        m_walk_as_fallback(options.walk_as_fallback) {}
-  std::string name() const override { return "manifold"; }
+        m_walk_as_fallback(options.walk_as_fallback),
+        m_incremental(options.incremental) {}
+  void shift(const pathspace::Path& base, const Vec2& raster_offset, ShiftResult& out) const override;
+  std::string name() const override { return m_incremental ? "manifold+incmw" : "manifold"; }
   const manifold::WalkSettings& walk_settings() const { return m_walk; }
 
   // Index m of the chain's end c if the walk strategy applies at base vertex k (offset
@@ -117,6 +128,7 @@ class ManifoldShift final : public ReconnectionShift {
   manifold::WalkSettings m_walk;
   bool m_emitter_chains_only;
   bool m_walk_as_fallback;
+  std::shared_ptr<const IncrementalManifoldShift> m_incremental;
 };
 
 // |d w'_b' / d w_b| of two chains pinned at the same c (see header): `base` ends at b,

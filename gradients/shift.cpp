@@ -43,6 +43,7 @@ void ShiftResult::reset(int n) {
   walk_refused = false;
   walk_iterations = 0;
   walk_traces = 0;
+  declared = 0;
 }
 
 double ShiftResult::prefix_jacobian(int k) const {

@@ -74,6 +74,9 @@ struct ShiftResult {
   bool walk_refused = false;
   int walk_iterations = 0;
   int64_t walk_traces = 0;
+  // Vertices declared specular by the incremental manifold walk (incremental_shift.h; 0:
+  // none, the offset reconnected as the hybrid shift does).
+  int declared = 0;
 
   void reset(int n);
   bool vertex_ok(int k) const { return k < alive; }

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "gradients/incremental_shift.h"
 #include "gradients/shift.h"
 #include "scene/scene.h"
 
@@ -21,6 +22,11 @@ struct ShiftChoice {
   bool manifold_emitter_chains_only = true;  // ManifoldShiftOptions::emitter_chains_only
   bool manifold_walk_as_fallback = true;     // ManifoldShiftOptions::walk_as_fallback
   JacobianFault fault = JacobianFault::none;  // tests' negative controls only
+  // INCMW (Manzi et al. 2014, Sec. 3.4): when set, "manifold" composes its incremental walk
+  // (ManifoldShiftOptions::incremental) and "reconnection" becomes IncrementalManifoldShift.
+  // Must be symmetric in its two points (symmetric_threshold).
+  OcclusionDecision incremental;
+  int incremental_max_declared = 1;  // IncrementalShiftOptions::max_declared
 };
 
 // Throws dp::ValueError for an unknown kind.

@@ -9,9 +9,16 @@
 
 #include "core/image_io.h"
 #include "integrators/integrator.h"
+#include "reconstruct/problem.h"
 
 namespace dp::integrators {
 
+// Any kernel: solves `problem` (its primal without the direct light) in L2 and L1 and
+// writes "", recon_l1, recon_l2, primal (+ direct) and direct.
+void add_reconstruction_layers(const reconstruct::Problem& problem, const core::Image& direct,
+                               const std::string& shown, int threads, RenderResult& result);
+
+// The forward-difference grid: the layers above, then dx and dy.
 void add_gradient_layers(const core::Image& primal, const core::Image& dx, const core::Image& dy,
                          const core::Image& direct, float alpha, const std::string& shown, int threads,
                          RenderResult& result);

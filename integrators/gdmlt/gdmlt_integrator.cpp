@@ -1,20 +1,41 @@
 #include "integrators/gdmlt/gdmlt_integrator.h"
 
 #include <algorithm>
+#include <type_traits>
 
+#include "core/rng.h"
 #include "core/timer.h"
+#include "gradients/ao_map.h"
 #include "gradients/shift_factory.h"
+#include "integrators/gdmlt/direct_pass.h"
 #include "integrators/gradient_output.h"
 #include "integrators/mcmc_driver.h"
-#include "integrators/gdmlt/direct_pass.h"
 #include "integrators/tile_scheduler.h"
+#include "kernels_adaptive/features.h"
+#include "kernels_adaptive/kernel_problem.h"
+#include "kernels_adaptive/pair_kernel.h"
 #include "mcmc/gradient_target.h"
+#include "reconstruct/pair_layers.h"
 
 namespace dp::integrators {
 
 namespace {
-enum Layer { kPrimal = 0, kDx = 1, kDy = 2, kDensity = 3, kLayers = 4 };
+// Splat buffers (W H values each): the primal, the density, then the kernel's rows spread
+// over as many buffers as they need (row r: buffer kRows + r / (W H), entry r % (W H)).
+enum Layer { kPrimal = 0, kDensity = 1, kRows = 2 };
 
+// A feature buffer (kernels_adaptive/features.h, values in [0, 1]) as an image layer.
+template <typename T>
+core::Image feature_image(const std::vector<T>& v, int w, int h) {
+  core::Image img(w, h);
+  for (size_t i = 0; i < v.size(); ++i) {
+    if constexpr (std::is_same_v<T, float>)
+      img[i] = Rgb::Constant(v[i]);
+    else
+      img[i] = Rgb(float(v[i][0]), float(v[i][1]), float(v[i][2]));
+  }
+  return img;
+}
 }  // namespace
 
 RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
@@ -31,10 +52,46 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   DirectPass direct(scene, m_settings, options);
   direct.render(m_settings.direct_spp > 0 ? m_settings.direct_spp : 1);
 
+  // The pair kernel: the 4-neighbour forward differences, or the structure-adaptive pairs
+  // from a feature pass (Manzi 2014, Sec. 3.5; only then is the feature pass run).
+  kernels_adaptive::PairKernel kernel;
+  kernels_adaptive::Features features;
+  double feature_seconds = 0;
+  if (m_settings.kernel == "adaptive") {
+    core::Timer ft;
+    features = kernels_adaptive::render_features(scene, m_settings.feature_spp,
+                                                 core::mix64(options.seed ^ 0xFEA7'0000'0000'0001ull),
+                                                 resolve_threads(options));
+    kernel = kernels_adaptive::adaptive_kernel(features, m_settings.affinity);
+    if (m_settings.fault_symmetric_as_one)  // tests' negative control only
+      for (auto& e : kernel.entries) e.weight = e.weight == 2.0f ? 1.0f : e.weight;
+    feature_seconds = ft.seconds();
+  } else {
+    kernel = kernels_adaptive::standard_kernel(w, h);
+  }
+  const int64_t rows = int64_t(kernel.rows.size());
+  const int row_buffers = int((rows + pixels - 1) / pixels);
+
   gradients::ShiftChoice choice;
   choice.kind = m_settings.shift;
   choice.threshold = m_settings.shift_threshold;
   choice.fault = m_settings.fault;
+  // INCMW: the screen-space AO map first (only then), the symmetric decision from it.
+  std::unique_ptr<gradients::AoMap> ao;
+  double ao_seconds = 0;
+  if (m_settings.incmw && m_settings.shift != "identity") {
+    core::Timer at;
+    gradients::AoMapSettings as;
+    as.radius = float(m_settings.ao_radius);
+    as.rays = m_settings.ao_rays;
+    as.seed = core::mix64(options.seed ^ 0xA0A0'0000'0000'0001ull);
+    as.threads = resolve_threads(options);
+    ao = std::make_unique<gradients::AoMap>(scene, as);
+    const gradients::AoMap* map = ao.get();
+    choice.incremental =
+        gradients::symmetric_threshold([map](const Vec3& p) { return map->lookup(p); }, float(m_settings.ao_threshold));
+    ao_seconds = at.seconds();
+  }
   const std::unique_ptr<gradients::Shift> shift = gradients::make_shift(scene, choice);
   mcmc::GradientTargetOptions to;
   to.walk = pathspace::WalkOptions{options.max_depth, m_settings.rr_depth, m_settings.nee, m_settings.shift_threshold};
@@ -48,8 +105,9 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   cfg.large_step_b = m_settings.large_step_b;
   cfg.chain.large_step_prob = m_settings.large_step_prob;
   cfg.chain.redraw_first = 1;  // the neighbour coordinate (gradient_target.h)
-  cfg.layers = kLayers;
-  McmcDriver driver([&] { return std::make_unique<mcmc::GradientTarget>(scene, *shift, to); }, cfg, scene, options);
+  cfg.layers = kRows + row_buffers;
+  McmcDriver driver([&] { return std::make_unique<mcmc::GradientTarget>(scene, *shift, kernel, to); }, cfg, scene,
+                    options);
   RenderOptions chain_opt = options;
   if (options.time_budget > 0) chain_opt.time_budget = std::max(1e-3, options.time_budget - timer.seconds());
   auto pixel_of = [&](const Vec2& r) {
@@ -60,10 +118,8 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
       [&](const mcmc::TargetValue& v, double weight, SplatList& out) {
         const double k = weight / v.f;
         if (!is_black(v.value)) out.add(kPrimal, pixel_of(v.raster), v.value.cast<double>() * k);
-        if (v.gradient_row >= 0 && !is_black(v.gradient)) {
-          const bool dy = v.gradient_row >= pixels;
-          out.add(dy ? kDy : kDx, dy ? v.gradient_row - pixels : v.gradient_row, v.gradient.cast<double>() * k);
-        }
+        if (v.gradient_row >= 0 && !is_black(v.gradient))
+          out.add(kRows + int(v.gradient_row / pixels), v.gradient_row % pixels, v.gradient.cast<double>() * k);
       },
       [&](const mcmc::Step& s, SplatList& out) {  // the paper's Fig. 9: mutations per pixel
         out.add(kDensity, pixel_of((s.accepted ? s.proposed : s.current).raster), Rgbd::Ones());
@@ -83,10 +139,48 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
       for (int x = 0; x < w; ++x) img(x, y) = (sum[size_t(y) * size_t(w) + size_t(x)] * k).cast<float>();
     return img;
   };
+  std::vector<Rgb> row_values(size_t(rows), Rgb::Zero());
+  for (int64_t r = 0; r < rows; ++r)
+    row_values[size_t(r)] = (run.sums[size_t(kRows + r / pixels)][size_t(r % pixels)] * scale).cast<float>();
   // Screened Poisson reconstruction of the indirect image (Manzi 2014, Eq. 8), then the
   // direct pass added (Sec. 4).
-  add_gradient_layers(image_of(kPrimal, scale), image_of(kDx, scale), image_of(kDy, scale), direct.image(),
-                      m_settings.alpha, m_settings.reconstruction, resolve_threads(options), result);
+  if (m_settings.kernel == "standard") {
+    // Rows in forward-difference order (kernels_adaptive::standard_kernel): dx, then dy.
+    core::Image dx(w, h), dy(w, h);
+    size_t r = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x + 1 < w; ++x) dx(x, y) = row_values[r++];
+    for (int y = 0; y + 1 < h; ++y)
+      for (int x = 0; x < w; ++x) dy(x, y) = row_values[r++];
+    add_gradient_layers(image_of(kPrimal, scale), dx, dy, direct.image(), m_settings.alpha,
+                        m_settings.reconstruction, resolve_threads(options), result);
+  } else {
+    reconstruct::Problem problem =
+        kernels_adaptive::make_problem(kernel, image_of(kPrimal, scale), std::move(row_values), m_settings.alpha);
+    add_reconstruction_layers(problem, direct.image(), m_settings.reconstruction, resolve_threads(options), result);
+    reconstruct::append_pair_layers(reconstruct::encode_pair_layers(problem.kernel, problem.b), result.layers);
+    result.layers.push_back({"features.normal", feature_image(features.normal, w, h)});
+    result.layers.push_back({"features.albedo", feature_image(features.albedo, w, h)});
+    result.layers.push_back({"features.depth", feature_image(features.depth, w, h)});
+    result.info["feature_seconds"] = feature_seconds;
+  }
+  int64_t symmetric = 0;
+  for (const auto& e : kernel.entries) symmetric += e.weight == 2.0f;
+  if (ao) {
+    core::Image ao_img(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) ao_img(x, y) = Rgb::Constant(std::max(0.0f, ao->at_pixel(x, y)));  // miss: 0
+    result.layers.push_back({"ao", std::move(ao_img)});
+    result.info["ao_seconds"] = ao_seconds;
+  }
+  // What ran and what was skipped: the passes' rays (0 = not run), INCMW's declarations.
+  result.stats.add("gdmlt.features.rays", m_settings.kernel == "adaptive" ? pixels * m_settings.feature_spp : 0);
+  result.stats.add("gdmlt.ao.rays", ao ? pixels * m_settings.ao_rays : 0);
+  result.stats.add("gdmlt.incmw.shifts", target_sum.incmw_shifts);
+  result.stats.add("gdmlt.incmw.declared_vertices", target_sum.incmw_declared);
+  result.stats.add("gdmlt.kernel.rows", rows);
+  result.stats.add("gdmlt.kernel.symmetric_entries", symmetric);
+  result.stats.add("gdmlt.kernel.entries", int64_t(kernel.entries.size()));
   const int64_t mutations = run.total_mutations;
   result.layers.push_back({"density", image_of(kDensity, mutations > 0 ? double(pixels) / double(mutations) : 0.0)});
 

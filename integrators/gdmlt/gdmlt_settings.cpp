@@ -11,9 +11,16 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   GdmltSettings g;
   g.alpha = reconstruct::kDefaultAlpha;
   g.kernel = s.get_string("kernel", g.kernel,
-                          "gradient kernel: standard (forward differences to the 4 neighbours); adaptive "
-                          "(structure-adaptive pairs, Manzi 2014 Sec. 3.5) is not implemented yet",
+                          "gradient kernel: adaptive (structure-adaptive pairs from a feature pass: the n most "
+                          "similar pixels of a window by the Eq. 7 affinity, Manzi 2014 Sec. 3.5) or standard "
+                          "(forward differences to the 4 neighbours, Lehtinen 2013)",
                           {"standard", "adaptive"});
+  g.feature_spp = s.get_int("feature_spp", g.feature_spp,
+                            "kernel=adaptive: jittered primary rays per pixel of the feature pass (normal, albedo, depth)");
+  g.affinity.window = s.get_int("adaptive_window", g.affinity.window,
+                                "kernel=adaptive: side of the square window searched for partners (odd, >= 3)");
+  g.affinity.neighbours = s.get_int("adaptive_neighbours", g.affinity.neighbours,
+                                    "kernel=adaptive: n, partners chosen per pixel");
   g.shift = s.get_string("shift", g.shift,
                          "T_1: manifold (specular chains re-solved by manifold walks, reconnection at the "
                          "first diffuse pair; Lehtinen 2013), reconnection (G-PT's hybrid shift) or identity "
@@ -25,7 +32,13 @@ GdmltSettings GdmltSettings::read(Settings& s) {
                                       "contributions of base and offset differ by more than mwgi_threshold (Eq. 6)");
   g.mwgi_threshold = s.get_double("mwgi_threshold", g.mwgi_threshold, "t of Manzi 2014 Eq. 6");
   g.incmw = s.get_bool("incmw", g.incmw,
-                       "incremental manifold walk guided by ambient occlusion (Sec. 3.4): not implemented yet");
+                       "incremental manifold walk (Sec. 3.4): at the first diffuse vertex of the shift, the next "
+                       "vertex is declared specular and moved by a manifold walk where the screen-space ambient "
+                       "occlusion of both base and offset exceeds ao_threshold (one declared vertex)");
+  g.ao_threshold = s.get_double("ao_threshold", g.ao_threshold, "incmw: AO coefficient above which a vertex is declared");
+  g.ao_radius = s.get_double("ao_radius", g.ao_radius,
+                             "incmw: AO ray length as a fraction of the image size, projected at the hit's depth");
+  g.ao_rays = s.get_int("ao_rays", g.ao_rays, "incmw: cosine-distributed AO rays per pixel");
   g.alpha = float(s.get_double("alpha", double(g.alpha),
                                "weight of the primal in the target f(z) and in the screened Poisson solve"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
@@ -44,9 +57,13 @@ GdmltSettings GdmltSettings::read(Settings& s) {
                            "samples per pixel of the direct pass (paths of at most 2 segments, path tracer), added "
                            "after reconstruction as in the paper; 0 = auto: interleaved with the chains, one "
                            "sample per pixel per mutation per pixel (--spp and --time)");
-  if (g.kernel == "adaptive")
-    throw ValueError("setting 'kernel=adaptive' is not implemented yet (use kernel=standard)", "--set");
-  if (g.incmw) throw ValueError("setting 'incmw=true' is not implemented yet", "--set");
+  if (g.feature_spp < 1) throw ValueError("setting 'feature_spp' must be >= 1", "--set");
+  if (g.affinity.window < 3 || g.affinity.window % 2 == 0)
+    throw ValueError("setting 'adaptive_window' must be odd and >= 3", "--set");
+  if (g.affinity.neighbours < 1) throw ValueError("setting 'adaptive_neighbours' must be >= 1", "--set");
+  if (!(g.ao_threshold >= 0.0 && g.ao_threshold <= 1.0)) throw ValueError("setting 'ao_threshold' must be in [0, 1]", "--set");
+  if (!(g.ao_radius > 0.0 && g.ao_radius < 1.0)) throw ValueError("setting 'ao_radius' must be in (0, 1)", "--set");
+  if (g.ao_rays < 1) throw ValueError("setting 'ao_rays' must be >= 1", "--set");
   if (g.mutations == "path")
     throw ValueError("setting 'mutations=path' needs the path-space mutators (not implemented yet)", "--set");
   if (!(g.large_step_prob > 0.0 && g.large_step_prob <= 1.0))

@@ -11,10 +11,12 @@
 // to 1 (on the first scene). Also: with T_1 = identity the pair sample of every neighbour is exactly
 // +-|N_i| times the primal value (the gradients reduce to finite differences).
 #include <algorithm>
+#include <map>
 #include <catch2/catch.hpp>
 
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/integrator.h"
+#include "kernels_adaptive/pair_kernel.h"
 #include "mcmc/gradient_target.h"
 #include "pathspace/sample_stream.h"
 #include "scene/bsdfs.h"
@@ -26,14 +28,25 @@ using namespace dp;
 namespace {
 constexpr int kRes = 32, kBlock = 8, kRuns = 10;
 
+// What gdmlt runs with: its kernel and the deliberate defects of the negative controls.
+struct Variant {
+  std::string kernel = "standard";
+  gradients::JacobianFault fault = gradients::JacobianFault::none;
+  bool symmetric_as_one = false;  // symmetric adaptive pairs splatted with weight 1, not 2
+  bool incmw = true;
+};
+
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, uint64_t seed,
-                                 gradients::JacobianFault fault = gradients::JacobianFault::none) {
+                                 const Variant& variant = {}) {
   integrators::Settings settings;
   std::unique_ptr<integrators::Integrator> in;
   if (name == "gdmlt") {
     settings.set("bootstrap", "20000");
+    settings.set("kernel", variant.kernel);
+    settings.set("incmw", variant.incmw ? "true" : "false");
     integrators::GdmltSettings g = integrators::GdmltSettings::read(settings);
-    g.fault = fault;
+    g.fault = variant.fault;
+    g.fault_symmetric_as_one = variant.symmetric_as_one;
     in = std::make_unique<integrators::GdmltIntegrator>(g, settings.to_json());
   } else {
     in = integrators::make_integrator(name, settings);
@@ -71,18 +84,69 @@ void blocks(F&& v, int xmax, int ymax, std::vector<std::vector<double>>& out, si
 struct Stats {
   std::vector<std::vector<double>> image;     // [0] image mean, [1..] block means
   std::vector<std::vector<double>> gradient;  // dx block means, then dy block means
+  std::vector<core::Image> runs;              // each run's image (PT: for the pair rows)
+  // kernel=adaptive: per run r, per 8x8 block of the rows' end pixels b, the mean over the
+  // block's rows of (gdmlt's I_b - I_a) - (PT run r's I_b - I_a).
+  std::vector<std::vector<double>> pair_error;
 };
 
-Stats run_stats(const scene::Scene& s, const std::string& name, int spp, uint64_t seed0,
-                gradients::JacobianFault fault = gradients::JacobianFault::none) {
+// The pair rows of an adaptive gdmlt render against PT run `pt`: appends one value per
+// block to st.pair_error. A non-symmetric pair's one row is unbiased for I_b - I_a. A
+// symmetric pair's two rows are not one by one (2 Delta^i_ij and 2 Delta^j_ji: each half
+// also carries its own pixel's Omega_bar / T_0 part, Manzi 2014 Eqs. 4-6), only their
+// average is: it is compared once, at the pair's smaller pixel index.
+void pair_errors(const integrators::RenderResult& res, const core::Image& pt, Stats& st) {
+  const size_t nb = size_t(kRes / kBlock);
+  std::map<std::pair<int, int>, double> rows;  // (b, a) -> value of the row I_b - I_a (indirect)
+  for (int k = 0;; ++k) {
+    const std::string name = "pairs." + std::to_string(k);
+    if (std::none_of(res.layers.begin(), res.layers.end(), [&](const auto& l) { return l.name == name; })) break;
+    const core::Image &value = layer(res, name), &offset = layer(res, name + ".offset");
+    for (int y = 0; y < kRes; ++y)
+      for (int x = 0; x < kRes; ++x)
+        if (offset(x, y).z() != 0.0f) {
+          const int a = (y + int(offset(x, y).y())) * kRes + x + int(offset(x, y).x());
+          REQUIRE(rows.emplace(std::make_pair(y * kRes + x, a), double(value(x, y).sum())).second);
+        }
+  }
+  REQUIRE(rows.size() >= size_t(kRes * kRes));  // n = 4 partners per pixel
+  const core::Image& direct = layer(res, "direct");
+  const auto total = [](const core::Image& im, int p) { return double(im[size_t(p)].sum()); };
+  std::vector<double> sum(2 * nb * nb, 0.0);
+  std::vector<int> count(2 * nb * nb, 0);
+  int symmetric = 0;
+  for (const auto& [ba, v] : rows) {
+    const auto [b, a] = ba;
+    const auto reverse = rows.find({a, b});
+    if (reverse != rows.end() && b > a) continue;  // counted with its twin
+    symmetric += reverse != rows.end();
+    const double est = reverse != rows.end() ? 0.5 * (v - reverse->second) : v;
+    // Rows hold the indirect part; the direct part's difference is added.
+    const double gd = est + total(direct, b) - total(direct, a);
+    // Per block, horizontal and vertical pairs apart, each oriented toward increasing
+    // pixel index: a biased row scale (the negative control) then adds up instead of
+    // cancelling between opposite orientations.
+    const bool horizontal = std::abs(b % kRes - a % kRes) >= std::abs(b / kRes - a / kRes);
+    const size_t block = (horizontal ? 0 : nb * nb) + size_t(b / kRes / kBlock) * nb + size_t(b % kRes / kBlock);
+    sum[block] += (b > a ? 1.0 : -1.0) * (gd - (total(pt, b) - total(pt, a)));
+    ++count[block];
+  }
+  REQUIRE(symmetric > kRes * kRes / 2);  // flat regions: mostly symmetric pairs
+  st.pair_error.resize(2 * nb * nb);
+  for (size_t b = 0; b < 2 * nb * nb; ++b) st.pair_error[b].push_back(sum[b] / count[b]);
+}
+
+Stats run_stats(const scene::Scene& s, const std::string& name, int spp, uint64_t seed0, const Variant& variant = {},
+                const Stats* pt = nullptr) {
   const size_t nb = size_t((kRes / kBlock) * (kRes / kBlock));
   Stats st;
   st.image.resize(1 + nb);
   st.gradient.resize(2 * nb);
   for (int r = 0; r < kRuns; ++r) {
-    const auto res = render(s, name, spp, seed0 + uint64_t(r), fault);
+    const auto res = render(s, name, spp, seed0 + uint64_t(r), variant);
     const bool gd = name == "gdmlt";
     const core::Image& img = gd ? layer(res, "recon_l2") : res.layers[0].image;
+    if (!gd) st.runs.push_back(img);
     double all = 0;
     for (int y = 0; y < kRes; ++y)
       for (int x = 0; x < kRes; ++x) all += double(img(x, y).sum());
@@ -99,6 +163,10 @@ Stats run_stats(const scene::Scene& s, const std::string& name, int spp, uint64_
       const double d = double(base(x, y + 1).sum()) - double(base(x, y).sum());
       return gd ? d + double(layer(res, "dy")(x, y).sum()) : d;
     };
+    if (gd && variant.kernel == "adaptive") {
+      pair_errors(res, pt->runs[size_t(r)], st);
+      continue;
+    }
     blocks(dx, kRes - 1, kRes, st.gradient, 0);
     blocks(dy, kRes, kRes - 1, st.gradient, nb);
   }
@@ -118,7 +186,7 @@ std::unique_ptr<scene::Scene> specular_box() {
 
 void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_control) {
   const Stats pt = run_stats(s, "path", 64, seed + 5000);
-  const Stats gd = run_stats(s, "gdmlt", 128, seed);
+  const Stats gd = run_stats(s, "gdmlt", 128, seed);  // kernel=standard: the dx/dy layers
   double mean_ratio = 0;
   const double r_img = test::worst_welch(gd.image, pt.image, 0.01, &mean_ratio);
   const test::Moments m = test::moments(gd.image[0]), p = test::moments(pt.image[0]);
@@ -137,7 +205,9 @@ void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_contro
   // carry Jacobians near 1 over most of the image -- so it is not a control there). Power: the L2 image mean's
   // standard error is ~0.14-0.35% of the mean, a block's ~4x that; with the Sidak
   // critical t of ~4, block biases above ~2-6% are detected.
-  const Stats broken = run_stats(s, "gdmlt", 128, seed, gradients::JacobianFault::unit);
+  Variant unit_jacobian;
+  unit_jacobian.fault = gradients::JacobianFault::unit;
+  const Stats broken = run_stats(s, "gdmlt", 128, seed, unit_jacobian);
   const double rb_img = test::worst_welch(broken.image, pt.image, 0.01);
   const double rb_grad = test::sidak_welch(broken.gradient, pt.gradient, 0.01);
   INFO("Jacobian forced to 1: image worst |t|/crit " << rb_img << ", gradients " << rb_grad);
@@ -153,6 +223,37 @@ TEST_CASE("gdmlt: L2 image and gradients agree with the path tracer (mirror and 
   check_against_pt(*specular_box(), 200, false);
 }
 
+TEST_CASE("gdmlt kernel=adaptive: L2 image and every pair row agree with the path tracer", "[stat]") {
+  // The structure-adaptive kernel (Manzi 2014, Sec. 3.5, Algorithm 1): symmetric pairs
+  // write 2 Delta^i_ij into their own row, non-symmetric ones Delta^i_ij and -Delta^j_ji
+  // into the shared row. Each run's kernel comes from its own feature pass, so the rows
+  // are checked run by run: per block, the mean over rows of (gdmlt row - PT run r's
+  // I_b - I_a) has mean 0 across runs (one-sample t-test: Welch against exact zeros has
+  // K - 1 degrees of freedom), Sidak over the blocks.
+  const auto s = glossy_box();
+  const Stats pt = run_stats(*s, "path", 64, 305000);
+  Variant adaptive;
+  adaptive.kernel = "adaptive";
+  const Stats gd = run_stats(*s, "gdmlt", 256, 300, adaptive, &pt);
+  const std::vector<std::vector<double>> zeros(gd.pair_error.size(), std::vector<double>(kRuns, 0.0));
+  double mean_ratio = 0;
+  const double r_img = test::worst_welch(gd.image, pt.image, 0.01, &mean_ratio);
+  INFO("L2 image: mean |t|/crit " << mean_ratio << ", worst block " << r_img);
+  CHECK(r_img < 1.0);
+  const double r_rows = test::sidak_welch(gd.pair_error, zeros, 0.01);
+  INFO("pair rows: worst block |t|/crit " << r_rows);
+  CHECK(r_rows < 1.0);
+
+  // Negative control: symmetric pairs splatted with weight 1 instead of 2 (Algorithm 1
+  // line 23 dropped) halve their rows.
+  adaptive.symmetric_as_one = true;
+  const Stats broken = run_stats(*s, "gdmlt", 256, 300, adaptive, &pt);
+  const double rb_rows = test::sidak_welch(broken.pair_error, zeros, 0.01);
+  const double rb_img = test::worst_welch(broken.image, pt.image, 0.01);
+  INFO("symmetric weight 1: rows " << rb_rows << ", image " << rb_img);
+  CHECK(rb_rows > 1.0);
+}
+
 TEST_CASE("gdmlt: with T_1 = identity every neighbour's pair sample is +-|N_i| times the primal", "[unit]") {
   // T_0 keeps x in pixel i, so the box filter gives f_j(T_0 x) = 0: x is in Omega_bar_i and
   // the sample is f_i(x) itself (Manzi 2014, Sec. 3.2, last paragraph). Splatted with
@@ -164,7 +265,8 @@ TEST_CASE("gdmlt: with T_1 = identity every neighbour's pair sample is +-|N_i| t
   const gradients::IdentityShift identity;
   mcmc::GradientTargetOptions o;
   o.walk.max_depth = 6;
-  mcmc::GradientTarget target(*s, identity, o);
+  const kernels_adaptive::PairKernel kernel = kernels_adaptive::standard_kernel(kRes, kRes);
+  mcmc::GradientTarget target(*s, identity, kernel, o);
   core::Rng rng(3, 4);
   int lit = 0;
   for (int n = 0; n < 3000; ++n) {
@@ -180,8 +282,8 @@ TEST_CASE("gdmlt: with T_1 = identity every neighbour's pair sample is +-|N_i| t
       stream.rewind();
       const mcmc::TargetValue t = target.evaluate(stream);
       REQUIRE((t.value == t0.value).all());
-      const int64_t p = int64_t(py) * kRes + px, plane = int64_t(kRes) * kRes;
-      const bool forward = t.gradient_row == p || t.gradient_row == plane + p;  // neighbour right or below
+      const int32_t p = py * kRes + px;
+      const bool forward = kernel.rows[size_t(t.gradient_row)].i == p;  // row I_j - I_i: neighbour right or below
       for (int c = 0; c < 3; ++c)
         REQUIRE(double(t.gradient[c]) == Approx((forward ? -1.0 : 1.0) * count * double(t.value[c])).epsilon(1e-6));
       rows.push_back(t.gradient_row);
@@ -202,4 +304,21 @@ TEST_CASE("gdmlt: no manifold walk where the scene has no specular chain; walks 
   const auto specular = render(*specular_box(), "gdmlt", 4, 1);
   CHECK(specular.stats.get("gdmlt.manifold.walks") > 0);
   CHECK(specular.stats.get("gdmlt.nan_dropped") == 0);
+}
+
+TEST_CASE("gdmlt: the feature pass runs only for kernel=adaptive, the AO pass only for incmw=true", "[unit]") {
+  Variant plain;  // kernel=standard
+  plain.incmw = false;
+  const auto p = render(*glossy_box(), "gdmlt", 2, 1, plain);
+  CHECK(p.stats.get("gdmlt.features.rays") == 0);
+  CHECK(p.stats.get("gdmlt.ao.rays") == 0);
+  CHECK(p.stats.get("gdmlt.incmw.shifts") == 0);
+  for (const auto& l : p.layers) CHECK((l.name != "ao" && l.name.rfind("features.", 0) != 0 && l.name != "pairs.0"));
+  Variant full;
+  full.kernel = "adaptive";
+  const auto f = render(*glossy_box(), "gdmlt", 2, 1, full);
+  CHECK(f.stats.get("gdmlt.features.rays") == kRes * kRes * 4);
+  CHECK(f.stats.get("gdmlt.ao.rays") == kRes * kRes * 16);
+  for (const char* name : {"ao", "features.normal", "features.albedo", "features.depth", "pairs.0", "pairs.0.offset"})
+    CHECK(std::any_of(f.layers.begin(), f.layers.end(), [&](const auto& l) { return l.name == name; }));
 }
