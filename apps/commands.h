@@ -9,5 +9,6 @@ namespace dp::apps {
 void register_render(CLI::App& app);
 void register_info(CLI::App& app);
 void register_compare(CLI::App& app);
+void register_layer(CLI::App& app);
 
 }  // namespace dp::apps

@@ -1,4 +1,4 @@
-// deltapath: command-line front end (render, info, compare, reconstruct).
+// deltapath: command-line front end (render, info, compare, layer, reconstruct, experiment, stress).
 #include <cstdio>
 #include <exception>
 
@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   dp::apps::register_render(app);
   dp::apps::register_info(app);
   dp::apps::register_compare(app);
+  dp::apps::register_layer(app);
   dp::apps::register_reconstruct(app);
   dp::apps::register_experiment(app);
   dp::apps::register_stress(app);

@@ -7,6 +7,7 @@
 #include "core/timer.h"
 #include "gradients/ao_map.h"
 #include "gradients/shift_factory.h"
+#include "gradients/symmetric_gradient.h"
 #include "integrators/gdmlt/direct_pass.h"
 #include "integrators/gradient_output.h"
 #include "integrators/mcmc_driver.h"
@@ -142,6 +143,15 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   std::vector<Rgb> row_values(size_t(rows), Rgb::Zero());
   for (int64_t r = 0; r < rows; ++r)
     row_values[size_t(r)] = (run.sums[size_t(kRows + r / pixels)][size_t(r % pixels)] * scale).cast<float>();
+  // Gradient energy (where the sampled gradients put their magnitude; the paper's Fig. 8
+  // insets): per pixel, half the summed luminance magnitude of the rows touching it.
+  core::Image energy(w, h);
+  for (int64_t r = 0; r < rows; ++r) {
+    const float e = 0.5f * float(gradients::magnitude(row_values[size_t(r)].cast<double>()));
+    const auto& pr = kernel.rows[size_t(r)];
+    energy[size_t(pr.i)] += Rgb::Constant(e);
+    energy[size_t(pr.j)] += Rgb::Constant(e);
+  }
   // Screened Poisson reconstruction of the indirect image (Manzi 2014, Eq. 8), then the
   // direct pass added (Sec. 4).
   if (m_settings.kernel == "standard") {
@@ -164,6 +174,7 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
     result.layers.push_back({"features.depth", feature_image(features.depth, w, h)});
     result.info["feature_seconds"] = feature_seconds;
   }
+  result.layers.push_back({"gradient_energy", std::move(energy)});
   int64_t symmetric = 0;
   for (const auto& e : kernel.entries) symmetric += e.weight == 2.0f;
   if (ao) {

@@ -58,4 +58,21 @@ printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resol
 check "scene without shapes renders the environment" test $? -eq 0
 "$bin" compare "$tmp/c.exr" "$tmp/small.exr" 2>"$tmp/err"
 check "compare of different sizes exits 1" test $? -eq 1
+
+# 5. A gdmlt render with the adaptive kernel carries its pair list: `reconstruct --in`
+#    solves it again (L2, the integrator's alpha) and matches the render's recon_l2; `layer`
+#    extracts a named layer and names the layers it has when asked for a missing one.
+printf 'version: 1\ncamera: {position: [0,1,-3], look_at: [0,1,0], fov: 45, resolution: [24, 16]}\nmaterials: {w: {type: diffuse, albedo: [0.7,0.7,0.7]}}\nshapes:\n  - {type: quad, material: w, vertices: [[-2,0,-4],[2,0,-4],[2,0,4],[-2,0,4]]}\n  - {type: quad, material: w, vertices: [[-2,0,2],[2,0,2],[2,3,2],[-2,3,2]]}\nlights: [{type: point, position: [0.5, 2, 0], intensity: [4,4,4]}]\n' > "$tmp/room.yaml"
+"$bin" render "$tmp/room.yaml" --integrator gdmlt --spp 2 --threads 2 --quiet --set bootstrap=2000 --out "$tmp/g.exr" 2>"$tmp/err"
+check "gdmlt adaptive render exits 0" test $? -eq 0
+"$bin" reconstruct --in "$tmp/g.exr" --norm l2 --out "$tmp/re.exr" >/dev/null 2>"$tmp/err"
+check "reconstruct of a pair-layer render exits 0" test $? -eq 0
+"$bin" layer "$tmp/g.exr" recon_l2 --out "$tmp/l2.exr" >/dev/null 2>"$tmp/err"
+check "layer extracts recon_l2" test $? -eq 0
+"$bin" compare "$tmp/re.exr" "$tmp/l2.exr" --json > "$tmp/cmp" 2>&1
+check "reconstruct --in matches the render's recon_l2 (relMSE < 1e-8)" \
+  python3 -c "import json,sys; sys.exit(0 if json.load(open('$tmp/cmp'))['relmse'] < 1e-8 else 1)"
+"$bin" layer "$tmp/g.exr" no_such_layer --out "$tmp/n.png" 2>"$tmp/err"
+check "layer of a missing name exits 1" test $? -eq 1
+check "layer error lists the layers" grep -q "pairs.0.offset" "$tmp/err"
 exit $fail
