@@ -21,6 +21,7 @@ struct ReconstructArgs {
   // L1 is the reference code's robust default (Lehtinen 2013 Sec. 5); l2 is unbiased.
   std::string norm = "l1";
   float alpha = reconstruct::kDefaultAlpha;  // 0.2; 0.3-0.4 keeps sub-pixel detail
+  float symmetric_weight = 1.0f;             // weight of rows whose reversed pair is a row too
   int threads = 0;                           // 0 = all hardware threads
 };
 
@@ -40,8 +41,9 @@ void run_reconstruct(const ReconstructArgs& a) {
                                   : grid    ? reconstruct::read_gradient_images(a.primal, a.dx, a.dy)
                                             : reconstruct::read_pair_images(a.primal, a.pairs);
   std::optional<core::Image> direct = std::move(g.direct);
-  const reconstruct::Problem problem =
-      reconstruct::make_render_problem(std::move(g), a.alpha, separate ? a.primal : a.in);
+  reconstruct::Problem problem = reconstruct::make_render_problem(std::move(g), a.alpha, separate ? a.primal : a.in);
+  if (a.symmetric_weight != 1.0f)
+    problem.row_weights = reconstruct::reversed_pair_weights(problem.kernel, a.symmetric_weight);
   reconstruct::SolveOptions options;
   options.threads = a.threads;
   const reconstruct::SolveResult r =
@@ -80,6 +82,8 @@ void register_reconstruct(CLI::App& app) {
                   "at pixel b) and pairs.<k>.offset (the pair list: a - b in R, G; B = 1 where the row exists)");
   cmd->add_option("--norm", args->norm, "l1 (robust, default) or l2 (unbiased)");
   cmd->add_option("--alpha", args->alpha, "weight of the primal image (default 0.2)");
+  cmd->add_option("--symmetric-weight", args->symmetric_weight,
+                  "weight of each row whose reversed pair is also a row (gdmlt's symmetric_weight; default 1)");
   cmd->add_option("--threads", args->threads, "worker threads (0 = all)");
   cmd->add_option("--out", args->out, "output EXR (a PNG preview is written beside it)")->required();
   cmd->callback([args] { run_reconstruct(*args); });

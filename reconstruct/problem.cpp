@@ -1,6 +1,8 @@
 #include "reconstruct/problem.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <string>
 
 #include "core/error.h"
@@ -95,6 +97,20 @@ std::vector<Rgb> apply_kernel(const Kernel& kernel, const core::Image& image) {
     out[r] = image[size_t(p.j)] - image[size_t(p.i)];
   }
   return out;
+}
+
+std::vector<float> reversed_pair_weights(const Kernel& kernel, float weight) {
+  require(std::isfinite(weight) && weight >= 0.0f, "the weight of reversed pairs must be finite and >= 0");
+  std::vector<std::pair<int32_t, int32_t>> sorted;
+  sorted.reserve(kernel.rows());
+  for (const PixelPair& p : kernel.pairs()) sorted.emplace_back(p.i, p.j);
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<float> w(kernel.rows(), 1.0f);
+  for (size_t r = 0; r < kernel.rows(); ++r) {
+    const PixelPair& p = kernel.pairs()[r];
+    if (std::binary_search(sorted.begin(), sorted.end(), std::make_pair(p.j, p.i))) w[r] = weight;
+  }
+  return w;
 }
 
 }  // namespace dp::reconstruct

@@ -79,6 +79,14 @@ void validate(const Problem& problem);
 Problem make_grid_problem(core::Image primal, const core::Image& dx, const core::Image& dy,
                           float alpha = kDefaultAlpha);
 
+// Row weights: `weight` for every row whose reversed pair (j, i) is also a row, 1 for
+// the others. Manzi et al. 2014's symmetric pairs are two such rows (values 2 Delta^i_ij
+// and 2 Delta^j_ji); in least squares they act as one row of weight 2, so against the
+// alpha^2 screening term an adaptive kernel is screened like a standard one at alpha/sqrt2.
+// weight = 0.5 restores the standard kernel's balance. Throws dp::ValueError unless
+// weight is finite and >= 0.
+std::vector<float> reversed_pair_weights(const Kernel& kernel, float weight);
+
 // Exact differences (H I)_r of an image for every kernel row.
 std::vector<Rgb> apply_kernel(const Kernel& kernel, const core::Image& image);
 

@@ -167,6 +167,8 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   } else {
     reconstruct::Problem problem =
         kernels_adaptive::make_problem(kernel, image_of(kPrimal, scale), std::move(row_values), m_settings.alpha);
+    if (m_settings.symmetric_weight != 1.0)
+      problem.row_weights = reconstruct::reversed_pair_weights(problem.kernel, float(m_settings.symmetric_weight));
     add_reconstruction_layers(problem, direct.image(), m_settings.reconstruction, resolve_threads(options), result);
     reconstruct::append_pair_layers(reconstruct::encode_pair_layers(problem.kernel, problem.b), result.layers);
     result.layers.push_back({"features.normal", feature_image(features.normal, w, h)});

@@ -19,6 +19,10 @@ GdmltSettings GdmltSettings::read(Settings& s) {
                             "kernel=adaptive: jittered primary rays per pixel of the feature pass (normal, albedo, depth)");
   g.affinity.window = s.get_int("adaptive_window", g.affinity.window,
                                 "kernel=adaptive: side of the square window searched for partners (odd, >= 3)");
+  g.symmetric_weight = s.get_double(
+      "symmetric_weight", g.symmetric_weight,
+      "kernel=adaptive: weight of each of a symmetric pair's two rows in the Poisson solve; 1 as in the paper "
+      "(the pair then counts twice against alpha's screening), 0.5 screens like the standard kernel");
   g.affinity.neighbours = s.get_int("adaptive_neighbours", g.affinity.neighbours,
                                     "kernel=adaptive: n, partners chosen per pixel");
   g.shift = s.get_string("shift", g.shift,
@@ -57,6 +61,8 @@ GdmltSettings GdmltSettings::read(Settings& s) {
                            "samples per pixel of the direct pass (paths of at most 2 segments, path tracer), added "
                            "after reconstruction as in the paper; 0 = auto: interleaved with the chains, one "
                            "sample per pixel per mutation per pixel (--spp and --time)");
+  if (!(g.symmetric_weight > 0.0) || !std::isfinite(g.symmetric_weight))
+    throw ValueError("setting 'symmetric_weight' must be > 0", "--set");
   if (g.feature_spp < 1) throw ValueError("setting 'feature_spp' must be >= 1", "--set");
   if (g.affinity.window < 3 || g.affinity.window % 2 == 0)
     throw ValueError("setting 'adaptive_window' must be odd and >= 3", "--set");

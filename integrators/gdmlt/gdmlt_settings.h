@@ -16,6 +16,7 @@ struct GdmltSettings {
   std::string kernel = "adaptive";  // gradient kernel: adaptive (Manzi 2014 Sec. 3.5) | standard (4-neighbour)
   int feature_spp = 4;              // primary rays per pixel of the feature pass (kernel=adaptive)
   kernels_adaptive::AffinityParams affinity;  // Sec. 5 defaults; window and neighbours are --set keys
+  double symmetric_weight = 1.0;    // solve weight of each row of a symmetric pair (1: the paper)
   std::string shift = "manifold";   // T_1: manifold (Lehtinen 2013) | reconnection | identity
   float shift_threshold = 0.05f;    // roughness at or below it: glossy/specular
   bool mwgi = true;                 // multiple weighted gradient integrals (Eq. 6)

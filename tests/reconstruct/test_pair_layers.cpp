@@ -2,6 +2,7 @@
 // (render_io.h): the pair list survives a file round trip exactly, malformed offset
 // layers are rejected with the layer and pixel named, and a render's `primal` layer
 // (indirect + direct) is solved without its direct part.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 
@@ -130,4 +131,54 @@ TEST_CASE("gradient render: the primal layer's direct part is not counted twice"
   out += d;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) CHECK((out(x, y) - full(x, y)).abs().maxCoeff() < 1e-4f);
+}
+
+TEST_CASE("symmetric pairs as two rows of 2 Delta: weight 1/2 per row solves like one row of Delta_i + Delta_j",
+          "[unit]") {
+  // Manzi 2014, Algorithm 1 writes a symmetric pair as I_i - I_j = 2 Delta^i and
+  // I_j - I_i = 2 Delta^j_ji. In least squares that is one row of weight 2; with
+  // reversed_pair_weights(0.5) the L2 solve equals the one-row kernel's exactly, and
+  // without it it does not (the screening is effectively alpha / sqrt 2).
+  const int w = 10, h = 8;
+  const core::Image primal = test_image(w, h);
+  const Kernel grid = Kernel::forward_differences(w, h);
+  std::vector<Rgb> one(grid.rows()), split_values;
+  std::vector<PixelPair> split_pairs;
+  for (size_t r = 0; r < grid.rows(); ++r) {
+    const PixelPair& p = grid.pairs()[r];
+    // Noisy halves: Delta^i (part of I_j - I_i seen from i) and Delta^j.
+    const Rgb di = Rgb::Constant(0.01f * float(r % 7) - 0.02f), dj = Rgb::Constant(0.015f * float(r % 5) - 0.03f);
+    one[r] = di + dj;
+    split_pairs.push_back({p.i, p.j});
+    split_values.push_back(2.0f * di);
+    split_pairs.push_back({p.j, p.i});
+    split_values.push_back(-2.0f * dj);
+  }
+  Problem a;
+  a.primal = primal;
+  a.kernel = grid;
+  a.b = one;
+  Problem b;
+  b.primal = primal;
+  b.kernel = Kernel(w, h, split_pairs);
+  b.b = split_values;
+  SolveOptions o;
+  o.method = L2Method::cg;
+  o.cg_tolerance = 1e-9;
+  const core::Image ia = solve_l2(a, o).image;
+  const core::Image unweighted = solve_l2(b, o).image;
+  b.row_weights = reversed_pair_weights(b.kernel, 0.5f);
+  REQUIRE(std::count(b.row_weights.begin(), b.row_weights.end(), 0.5f) == long(b.kernel.rows()));
+  const core::Image weighted = solve_l2(b, o).image;
+  float worst_w = 0, worst_u = 0;
+  for (size_t i = 0; i < ia.size(); ++i) {
+    worst_w = std::max(worst_w, (weighted[i] - ia[i]).abs().maxCoeff());
+    worst_u = std::max(worst_u, (unweighted[i] - ia[i]).abs().maxCoeff());
+  }
+  INFO("weighted " << worst_w << ", unweighted " << worst_u);
+  CHECK(worst_w < 1e-4f);
+  CHECK(worst_u > 1e-3f);
+  // Rows without a reversed twin keep weight 1.
+  const std::vector<float> g = reversed_pair_weights(grid, 0.5f);
+  CHECK(std::all_of(g.begin(), g.end(), [](float x) { return x == 1.0f; }));
 }
