@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "integrators/integrator.h"
+#include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
@@ -25,6 +26,7 @@ struct Entry {
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
+      {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},

@@ -12,6 +12,14 @@ int resolve_threads(const RenderOptions& options) {
   return options.threads > 0 ? options.threads : core::hardware_threads();
 }
 
+void ScheduleResult::fill(RenderResult& result) const {
+  result.wall_seconds = seconds;
+  result.min_spp = min_spp();
+  result.max_spp = max_spp();
+  result.partial = partial;
+  result.info["passes"] = passes;
+}
+
 int64_t ScheduleResult::min_spp() const {
   return tile_spp.empty() ? 0 : *std::min_element(tile_spp.begin(), tile_spp.end());
 }

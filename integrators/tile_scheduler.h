@@ -36,6 +36,8 @@ struct ScheduleResult {
   int64_t max_spp() const;
   // Per-pixel sample count image helper.
   int64_t spp_at(int x, int y) const;
+  // Copies wall time, min/max spp, `partial` and info["passes"] into a render result.
+  void fill(RenderResult& result) const;
   int tiles_x = 0;
 };
 
@@ -47,6 +49,31 @@ constexpr int kTileSize = 16;
 constexpr int kMaxPassSpp = 64;  // largest progressive pass (samples per pixel)
 
 using PassFunction = std::function<void(int64_t pass, bool complete)>;
+
+// The per-pixel loop of a tile: `spp` jittered raster positions per pixel, each handed
+// to sample(raster, L) -> false to drop the sample (a non-finite value: counted, never
+// added); the pixel's sum of kept values is added to sum[y * width + x]. Returns the
+// number of dropped samples.
+template <class SampleFn>
+int64_t accumulate_tile(const Tile& tile, int spp, core::Rng& rng, int width, std::vector<Rgbd>& sum,
+                        SampleFn&& sample) {
+  int64_t dropped = 0;
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      Rgbd acc = Rgbd::Zero();
+      for (int s = 0; s < spp; ++s) {
+        const Vec2 raster(float(x) + rng.uniform(), float(y) + rng.uniform());
+        Rgb L = Rgb::Zero();
+        if (!sample(raster, L)) {
+          ++dropped;
+          continue;
+        }
+        acc += L.cast<double>();
+      }
+      sum[size_t(y) * size_t(width) + size_t(x)] += acc;
+    }
+  return dropped;
+}
 
 ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
                          const TileFunction& fn, const PassFunction& pass_done = {});

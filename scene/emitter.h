@@ -99,6 +99,9 @@ class SpotEmitter final : public Emitter {
   Rgb power() const override;
   // Intensity toward unit direction w (world space, pointing away from the light).
   Rgb intensity(const Vec3& w) const;
+  const Vec3& position() const { return m_position; }
+  const Frame& frame() const { return m_frame; }  // n = the spot's axis
+  float cos_cutoff() const { return m_cos_cutoff; }
 
  private:
   Vec3 m_position;

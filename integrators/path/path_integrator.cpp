@@ -15,21 +15,10 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
   const ScheduleResult sched = run_tiles(w, h, options, "path", [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
     core::Stats& stats = thread_stats[size_t(thread)];
     PathCounters counters;
-    int64_t dropped = 0;
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        Rgbd acc = Rgbd::Zero();
-        for (int s = 0; s < spp; ++s) {
-          const Vec2 raster(float(x) + rng.uniform(), float(y) + rng.uniform());
-          const Rgb L = tracer.radiance(cam.generate_ray(raster), rng, counters);
-          if (!is_finite(L)) {
-            ++dropped;  // counted and dropped, never splatted
-            continue;
-          }
-          acc += L.cast<double>();
-        }
-        sum[size_t(y) * size_t(w) + size_t(x)] += acc;
-      }
+    const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
+      L = tracer.radiance(cam.generate_ray(raster), rng, counters);
+      return is_finite(L);  // a non-finite sample is counted and dropped, never splatted
+    });
     counters.flush(stats);
     stats.add("pt.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
     stats.add("pt.nan_dropped", dropped);
@@ -44,11 +33,7 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
     }
   result.layers.push_back({"", std::move(img)});
   for (const auto& s : thread_stats) result.stats.merge(s);
-  result.wall_seconds = sched.seconds;
-  result.min_spp = sched.min_spp();
-  result.max_spp = sched.max_spp();
-  result.partial = sched.partial;
-  result.info["passes"] = sched.passes;
+  sched.fill(result);
   return result;
 }
 

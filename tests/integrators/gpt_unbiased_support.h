@@ -19,6 +19,7 @@
 #include "reconstruct/problem.h"
 #include "reconstruct/solve.h"
 
+#include "tests/support/quiet_options.h"
 #include "tests/support/welch.h"
 
 namespace dp::test {
@@ -31,13 +32,7 @@ inline integrators::RenderResult render_with(const scene::Scene& s, const std::s
   integrators::Settings settings;
   for (const auto& kv : set) settings.set(kv.first, kv.second);
   auto in = integrators::make_integrator(integrator, settings);
-  integrators::RenderOptions opt;
-  opt.spp = spp;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return in->render(s, opt);
+  return in->render(s, quiet_options(spp, seed, max_depth));
 }
 
 inline const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {

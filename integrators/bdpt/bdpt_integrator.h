@@ -1,0 +1,25 @@
+// `--integrator bdpt`: bidirectional path tracing (Veach 1997, Ch. 10; all s/t
+// strategies, power or balance heuristic) scheduled over tiles with progressive passes.
+// Image = camera-side estimate per pixel (divided by its sample count) + light-tracing
+// splats (scaled by pixel count / light paths traced), merged deterministically
+// (splat_merger.h). Lights: area and point (others are refused with an error naming them).
+#pragma once
+
+#include "integrators/bdpt/bdpt_settings.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+class BdptIntegrator final : public Integrator {
+ public:
+  explicit BdptIntegrator(Settings& settings) : m_settings(BdptSettings::read(settings)) {}
+  // Tests: explicit settings (including BdptSettings::mis.fault).
+  explicit BdptIntegrator(const BdptSettings& settings) : m_settings(settings) {}
+  std::string name() const override { return "bdpt"; }
+  RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+
+ private:
+  BdptSettings m_settings;
+};
+
+}  // namespace dp::integrators

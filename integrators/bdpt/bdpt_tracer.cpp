@@ -1,0 +1,47 @@
+#include "integrators/bdpt/bdpt_tracer.h"
+
+#include "pathspace/bidir_connect.h"
+
+namespace dp::integrators {
+
+bool BdptTracer::sample(const Vec2& raster, core::Rng& rng, BdptScratch& sc, Rgb& L, std::vector<Splat>& splats,
+                        BdptCounters& counters) const {
+  const pathspace::SubpathParams cam_params{m_max_depth + 1, m_settings.rr_depth};
+  const pathspace::SubpathParams light_params{m_max_depth, m_settings.rr_depth};
+  pathspace::camera_subpath(m_scene, raster, cam_params, rng, sc.camera);
+  pathspace::light_subpath(m_scene, light_params, rng, sc.light);
+  counters.camera_vertices += int64_t(sc.camera.size());
+  counters.light_vertices += int64_t(sc.light.size());
+  const int nc = int(sc.camera.size()), nl = int(sc.light.size());
+  const int width = m_scene.camera().width();
+  Rgb sum = Rgb::Zero();
+  bool finite = true;
+  sc.pending.clear();
+  for (int t = 1; t <= nc; ++t)
+    for (int s = 0; s <= nl; ++s) {
+      if (s + t < 2 || s + t - 1 > m_max_depth) continue;
+      if (m_settings.only_s >= 0 && (s != m_settings.only_s || t != m_settings.only_t)) continue;
+      pathspace::Connection c;
+      const bool ok = pathspace::connect(m_scene, sc.light.data(), s, sc.camera.data(), t, m_settings.mis, c);
+      counters.connections += c.tested;
+      counters.occluded += c.occluded;
+      if (!ok) continue;
+      const Rgb v = c.value * c.weight;
+      finite = finite && is_finite(v);
+      if (t == 1) {
+        const float shift = m_settings.mis.fault == pathspace::BidirFault::splat_pixel_rounded ? 0.5f : 0.0f;
+        const int px = std::min(int(c.raster.x() + shift), width - 1);
+        const int py = std::min(int(c.raster.y() + shift), m_scene.camera().height() - 1);
+        sc.pending.push_back(Splat{py * width + px, v});
+      } else {
+        sum += v;
+      }
+    }
+  if (!finite) return false;  // counted and dropped by the caller, never splatted
+  L += sum;
+  counters.splats += int64_t(sc.pending.size());
+  splats.insert(splats.end(), sc.pending.begin(), sc.pending.end());
+  return true;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,52 @@
+// Per-sample physics of bidirectional path tracing (Veach 1997, Ch. 10): one camera
+// subpath through a raster position and one light subpath, every strategy (s, t) with
+// s + t - 1 <= max_depth connected and MIS-weighted (pathspace/bidir_mis.h). Camera-side
+// strategies (t >= 2) add to the sample's radiance; light tracing (t = 1) produces splats
+// for the pixels the light vertices project to. A sample with any non-finite value is
+// dropped whole (radiance and splats) and reported to the caller.
+#pragma once
+
+#include <vector>
+
+#include "core/rng.h"
+#include "core/stats.h"
+#include "integrators/bdpt/bdpt_settings.h"
+#include "integrators/bdpt/splat_merger.h"
+#include "pathspace/bidir_subpath.h"
+
+namespace dp::integrators {
+
+// Hot-loop counters, flushed into core::Stats once per tile.
+struct BdptCounters {
+  int64_t camera_vertices = 0, light_vertices = 0, connections = 0, occluded = 0, splats = 0;
+  void flush(core::Stats& stats) const {
+    stats.add("bdpt.camera_vertices", camera_vertices);
+    stats.add("bdpt.light_vertices", light_vertices);
+    stats.add("bdpt.connections", connections);
+    stats.add("bdpt.connections_occluded", occluded);
+    stats.add("bdpt.splats", splats);
+  }
+};
+
+// Per-thread scratch (no allocation per sample once warmed up).
+struct BdptScratch {
+  std::vector<pathspace::BidirVertex> camera, light;
+  std::vector<Splat> pending;
+};
+
+class BdptTracer {
+ public:
+  BdptTracer(const scene::Scene& scene, const BdptSettings& settings, int max_depth)
+      : m_scene(scene), m_settings(settings), m_max_depth(max_depth) {}
+  // Adds the camera-side estimate to L and appends splats (pixel index, value) to
+  // `splats`; returns false (adding nothing) if any value was NaN/Inf.
+  bool sample(const Vec2& raster, core::Rng& rng, BdptScratch& scratch, Rgb& L, std::vector<Splat>& splats,
+              BdptCounters& counters) const;
+
+ private:
+  const scene::Scene& m_scene;
+  BdptSettings m_settings;
+  int m_max_depth;
+};
+
+}  // namespace dp::integrators

@@ -1,0 +1,65 @@
+#include "pathspace/bidir_connect.h"
+
+#include "pathspace/bidir_light.h"
+
+namespace dp::pathspace {
+
+namespace {
+
+// f(wi, w) |cos w| at a surface vertex (its own subpath's mode), or Le cos for a light
+// endpoint; 0 if either direction violates sidedness (geometric vs shading normal).
+Rgb scatter(const BidirVertex& v, const Vec3& w, scene::TransportMode mode, bool cosine) {
+  if (v.kind == BidirKind::light) return light_emit_cos(v, w);
+  if (!v.bsdf) return Rgb::Zero();
+  const Vec3 wi = v.sp.shading.to_local(v.wi), wo = v.sp.shading.to_local(w);
+  if (!(v.sp.ng.dot(v.wi) * wi.z() > 0.0f) || !(v.sp.ng.dot(w) * wo.z() > 0.0f)) return Rgb::Zero();
+  return v.bsdf->eval(scene::BsdfContext{v.sp.uv, mode}, wi, wo) * (cosine ? std::abs(wo.z()) : 1.0f);
+}
+
+bool blocked(const scene::Scene& scene, const BidirVertex& a, const BidirVertex& b) {
+  if (a.on_surface()) return scene.occluded(scene.spawn_segment(a.sp, b.sp.p));
+  if (b.on_surface()) return scene.occluded(scene.spawn_segment(b.sp, a.sp.p));
+  return scene.occluded(a.sp.p, b.sp.p);
+}
+
+}  // namespace
+
+bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
+             const MisConfig& config, Connection& out) {
+  out = Connection{};
+  const BidirVertex& z = camera[t - 1];
+  if (s == 0) {
+    if (t < 2 || !z.emitter || z.kind != BidirKind::surface) return false;
+    out.value = z.beta * z.emitter->eval(z.sp, z.wi);
+  } else {
+    const BidirVertex& y = light[s - 1];
+    if (!y.connectable() || !z.connectable()) return false;
+    if (t == 1 && !y.on_surface()) return false;  // a point light seen by a pinhole: no image
+    const Vec3 d = z.sp.p - y.sp.p;
+    const float dist2 = d.squaredNorm();
+    if (!(dist2 > 0.0f)) return false;
+    const Vec3 w = d / std::sqrt(dist2);  // y -> z
+    const bool cosine = config.fault != BidirFault::connection_without_cosine;
+    const Rgb fy = scatter(y, w, scene::TransportMode::importance, cosine);
+    if (is_black(fy)) return false;
+    if (t == 1) {
+      const auto raster = scene.camera().raster_of(y.sp.p);
+      if (!raster) return false;
+      out.raster = *raster;
+      out.value = y.beta * fy * (scene.camera().pdf_direction(-w) / dist2);
+    } else {
+      const Rgb fz = scatter(z, -w, scene::TransportMode::radiance, cosine);
+      out.value = y.beta * fy * fz * z.beta / dist2;
+    }
+  }
+  if (is_black(out.value)) return false;
+  if (s > 0) {
+    out.tested = true;
+    out.occluded = blocked(scene, light[s - 1], z);
+    if (out.occluded) return false;
+  }
+  out.weight = config.unweighted ? 1.0f : mis_weight(scene, light, s, camera, t, config);
+  return out.weight > 0.0f;
+}
+
+}  // namespace dp::pathspace

@@ -1,0 +1,78 @@
+#include "pathspace/bidir_mis.h"
+
+#include <cmath>
+
+#include "pathspace/bidir_light.h"
+
+namespace dp::pathspace {
+
+namespace {
+
+// Dirac-derived densities are stored as 0 and cancel between strategies (bidir_vertex.h).
+double remap(float pdf) { return pdf != 0.0f ? double(pdf) : 1.0; }
+
+}  // namespace
+
+float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
+                 const MisConfig& config) {
+  const bool cos = config.fault != BidirFault::reverse_pdf_without_cosine;
+  const BidirVertex* y = s > 0 ? &light[s - 1] : nullptr;
+  const BidirVertex& z = camera[t - 1];
+  // Reverse densities of the connection vertices and their predecessors (Veach 1997,
+  // Sec. 10.2: the densities the other side would have used). Index 0: the endpoint,
+  // 1: its predecessor.
+  float z_rev[2] = {0, 0}, y_rev[2] = {0, 0};
+  if (s == 0) {
+    // z_{t-1} acts as the light vertex: its density is light selection x area sampling,
+    // z_{t-2}'s is the emission direction density.
+    z_rev[0] = light_pdf_pos(scene, z);
+    if (t >= 2) z_rev[1] = solid_angle_to_area(light_pdf_dir(z, z.wi), z, camera[t - 2], cos);
+  } else {
+    const Vec3 yz = (z.sp.p - y->sp.p).normalized();
+    // z_{t-1} generated from y_{s-1} (light walk direction).
+    const float pdf_yz =
+        s == 1 ? light_pdf_dir(*y, yz) : bsdf_pdf(*y, y->wi, yz, scene::TransportMode::importance);
+    z_rev[0] = solid_angle_to_area(pdf_yz, *y, z, cos);
+    // z_{t-2} generated from z_{t-1}, arriving from y_{s-1}.
+    if (t >= 2) z_rev[1] = solid_angle_to_area(bsdf_pdf(z, -yz, z.wi, scene::TransportMode::importance), z,
+                                               camera[t - 2], cos);
+    // y_{s-1} generated from z_{t-1} (camera walk direction).
+    const float pdf_zy =
+        t == 1 ? scene.camera().pdf_direction(-yz) : bsdf_pdf(z, z.wi, -yz, scene::TransportMode::radiance);
+    y_rev[0] = solid_angle_to_area(pdf_zy, z, *y, cos);
+    // y_{s-2} generated from y_{s-1}, arriving from z_{t-1}.
+    if (s >= 2) y_rev[1] = solid_angle_to_area(bsdf_pdf(*y, yz, y->wi, scene::TransportMode::radiance), *y,
+                                               light[s - 2], cos);
+  }
+  const bool power = config.heuristic == MisHeuristic::power;
+  auto h = [power](double r) { return power ? r * r : r; };
+  double sum = 0.0;
+  // Toward the camera: strategy (s + t - i, i) for i = t-1 .. 1 connects z_i (now a light
+  // vertex) to z_{i-1}; impossible if either scattered through a Dirac lobe. The
+  // connection endpoint z_{t-1} itself is a connection vertex here, never "delta".
+  double r = 1.0;
+  for (int i = t - 1; i > 0; --i) {
+    const float rev = i == t - 1 ? z_rev[0] : i == t - 2 ? z_rev[1] : camera[i].pdf_rev;
+    r *= h(remap(rev) / remap(camera[i].pdf_fwd));
+    const bool delta_i = i == t - 1 ? false : camera[i].delta;
+    if (delta_i || camera[i - 1].delta) continue;
+    if (i == 1 && config.fault == BidirFault::mis_without_light_tracing) continue;
+    sum += r;
+  }
+  // Toward the light: strategy (i, s + t - i) for i = s-1 .. 0 connects y_{i-1} to y_i
+  // (now a camera vertex); i = 0 means the camera walk hits the light: impossible for a
+  // delta-position light.
+  r = 1.0;
+  for (int i = s - 1; i >= 0; --i) {
+    const float rev = i == s - 1 ? y_rev[0] : i == s - 2 ? y_rev[1] : light[i].pdf_rev;
+    r *= h(remap(rev) / remap(light[i].pdf_fwd));
+    const bool delta_i = i == s - 1 ? false : light[i].delta;
+    const bool delta_prev = i > 0 ? light[i - 1].delta : light[0].is_delta_light();
+    if (delta_i || delta_prev) continue;
+    sum += r;
+  }
+  const double w = 1.0 / (1.0 + sum);
+  return std::isfinite(w) ? float(w) : 0.0f;
+}
+
+}  // namespace dp::pathspace

@@ -1,0 +1,139 @@
+#include "pathspace/bidir_subpath.h"
+
+#include "core/warp.h"
+#include "pathspace/bidir_light.h"
+#include "scene/shape.h"
+
+namespace dp::pathspace {
+
+namespace {
+
+scene::TransportMode other(scene::TransportMode m) {
+  return m == scene::TransportMode::radiance ? scene::TransportMode::importance : scene::TransportMode::radiance;
+}
+
+// Solid-angle density with which the walk leaves `from` (pinhole, light point or
+// scattering surface) toward unit world direction w.
+float leave_pdf(const scene::Scene& scene, const BidirVertex& from, const Vec3& w, scene::TransportMode mode) {
+  if (from.kind == BidirKind::camera) return scene.camera().pdf_direction(w);
+  if (from.kind == BidirKind::light) return light_pdf_dir(from, w);
+  return bsdf_pdf(from, from.wi, w, mode);
+}
+
+// Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
+// carried by the ray. Densities from vertex positions (bidir_vertex.h).
+void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportMode mode,
+                 const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path) {
+  scene::SurfaceHit hit;
+  while (int(path.size()) < params.max_vertices) {
+    if (!scene.intersect(ray, hit)) break;
+    const size_t n = path.size();  // index of the new vertex
+    const BidirVertex& prev = path[n - 1];
+    BidirVertex v;
+    v.sp = hit;
+    v.bsdf = hit.bsdf;
+    v.emitter = hit.emitter;
+    const Vec3 d = prev.sp.p - hit.p;
+    const float len = d.norm();
+    if (!(len > 0.0f)) break;
+    v.wi = d / len;
+    v.beta = beta;
+    v.kind = BidirKind::surface;
+    // Forward density of v; reverse density of prev's predecessor (the other walk
+    // arriving at prev from v). A Dirac lobe at prev leaves both 0.
+    if (!prev.delta) {
+      v.pdf_fwd = solid_angle_to_area(leave_pdf(scene, prev, -v.wi, mode), prev, v);
+      if (n >= 2 && prev.kind == BidirKind::surface)
+        path[n - 2].pdf_rev = solid_angle_to_area(bsdf_pdf(prev, -v.wi, prev.wi, other(mode)), prev, path[n - 2]);
+    }
+    path.push_back(v);
+    if (int(path.size()) >= params.max_vertices || !hit.bsdf) break;
+    BidirVertex& cur = path.back();
+    const Vec3 wi_local = hit.shading.to_local(cur.wi);
+    if (!(hit.ng.dot(cur.wi) * wi_local.z() > 0.0f)) break;  // sidedness (as the path tracer)
+    const scene::BsdfContext ctx{hit.uv, mode};
+    const float u_lobe = rng.uniform();
+    const Vec2 u = rng.uniform2();
+    const auto bs = hit.bsdf->sample(ctx, wi_local, u_lobe, u);
+    if (!bs || is_black(bs->weight)) break;
+    const Vec3 wo = hit.shading.to_world(bs->wo);
+    if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) break;
+    cur.delta = bs->is_delta();
+    beta *= bs->weight;
+    if (int(path.size()) - 1 >= params.rr_depth) {  // segments so far
+      const float q = std::min(0.95f, max_component(beta));
+      if (!(rng.uniform() < q)) break;
+      beta /= q;
+    }
+    ray = scene.spawn_ray(hit, wo);
+  }
+}
+
+}  // namespace
+
+void camera_subpath(const scene::Scene& scene, const Vec2& raster, const SubpathParams& params, core::Rng& rng,
+                    std::vector<BidirVertex>& out) {
+  out.clear();
+  const scene::PerspectiveCamera& cam = scene.camera();
+  BidirVertex z0;
+  z0.kind = BidirKind::camera;
+  z0.sp.p = cam.position();
+  z0.sp.ng = cam.forward();
+  z0.pdf_fwd = 1.0f;  // the pinhole position is fixed
+  out.push_back(z0);
+  if (params.max_vertices < 2) return;
+  const Ray ray = cam.generate_ray(raster);
+  // We / p = 1 for a camera ray of its own pixel (bidir_vertex.h); the MIS density is
+  // the whole-image direction density.
+  random_walk(scene, ray, Rgb::Ones(), scene::TransportMode::radiance, params, rng, out);
+}
+
+void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
+                   std::vector<BidirVertex>& out) {
+  out.clear();
+  const float u_light = rng.uniform();
+  const Vec2 u_pos = rng.uniform2(), u_dir = rng.uniform2();
+  float pmf = 0.0f;
+  const scene::Emitter* e = scene.sample_emitter(u_light, pmf);
+  if (!e || params.max_vertices < 1) return;
+  BidirVertex y0;
+  y0.kind = BidirKind::light;
+  y0.emitter = e;
+  Ray ray;
+  Vec3 w;
+  if (e->kind() == scene::EmitterKind::area) {
+    const scene::PositionSample ps = static_cast<const scene::AreaEmitter*>(e)->shape()->sample_area(u_pos);
+    y0.sp.p = ps.p;
+    y0.sp.ng = ps.n;
+    y0.sp.shading = Frame::from_normal(ps.n);
+    y0.sp.uv = ps.uv;
+    w = y0.sp.shading.to_world(core::warp::square_to_cosine_hemisphere(u_dir));
+    ray = scene.spawn_ray(y0.sp, w);
+  } else if (e->kind() == scene::EmitterKind::point || e->kind() == scene::EmitterKind::spot) {
+    if (e->kind() == scene::EmitterKind::point) {
+      y0.sp.p = static_cast<const scene::PointEmitter*>(e)->position();
+      w = core::warp::square_to_uniform_sphere(u_dir);
+    } else {
+      const auto* spot = static_cast<const scene::SpotEmitter*>(e);
+      y0.sp.p = spot->position();
+      w = spot->frame().to_world(core::warp::square_to_uniform_cone(u_dir, spot->cos_cutoff()));
+    }
+    ray.o = y0.sp.p;
+    ray.d = w;
+    ray.tmin = 0.0f;
+    ray.tmax = kInfinity;
+  } else {
+    return;  // refused by check_bidir_emitters before rendering
+  }
+  y0.pdf_fwd = light_pdf_pos(scene, y0);
+  if (!(y0.pdf_fwd > 0.0f)) return;
+  y0.beta = Rgb::Constant(1.0f / y0.pdf_fwd);
+  out.push_back(y0);
+  const float pdf_dir = light_pdf_dir(y0, w);
+  if (!(pdf_dir > 0.0f) || params.max_vertices < 2) return;
+  const Rgb beta = y0.beta * light_emit_cos(y0, w) / pdf_dir;
+  if (is_black(beta)) return;
+  random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
+}
+
+}  // namespace dp::pathspace

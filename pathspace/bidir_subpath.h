@@ -1,0 +1,29 @@
+// Camera and light subpaths for bidirectional path tracing (vertex convention in
+// bidir_vertex.h). Both walks sample BSDFs (TransportMode radiance from the camera,
+// importance from the lights), store forward and reverse area densities per vertex,
+// and stop at a miss, a surface without material, a sidedness violation (geometric and
+// shading normals disagree), Russian roulette (survival min(0.95, max beta) once the
+// subpath has rr_depth segments; not part of the MIS densities) or max_vertices.
+// Randomness comes only from `rng` (fixed order per sample: deterministic).
+#pragma once
+
+#include <vector>
+
+#include "core/rng.h"
+#include "pathspace/bidir_vertex.h"
+
+namespace dp::pathspace {
+
+struct SubpathParams {
+  int max_vertices = 9;  // camera: max_depth + 1 (z_0 included); light: max_depth
+  int rr_depth = 5;
+};
+
+// z_0 = pinhole, z_1 .. along the primary ray through `raster` (continuous pixels).
+void camera_subpath(const scene::Scene& scene, const Vec2& raster, const SubpathParams& params, core::Rng& rng,
+                    std::vector<BidirVertex>& out);
+// y_0 on a light chosen by Scene::sample_emitter, y_1 .. (empty if the scene has no light).
+void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
+                   std::vector<BidirVertex>& out);
+
+}  // namespace dp::pathspace

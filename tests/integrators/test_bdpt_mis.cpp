@@ -1,0 +1,208 @@
+// BDPT MIS weights (pathspace/bidir_mis.h) on paths sampled by the real subpath walks and
+// connections of small scenes (lit box with a rough conductor and a smooth glass sphere:
+// diffuse, glossy and Dirac vertices; furnace sphere with an emissive inner surface and a
+// point light: a delta-position light). For every connected path x of strategy (s, t):
+//  (1) the weights the library computes for x as sampled by EVERY strategy (s', t') that
+//      can generate it sum to 1 (to float precision), for the power and the balance
+//      heuristic. The subpaths of each split (s', t') are rebuilt from x's vertices with
+//      densities from a test-local reference written straight from Veach 1997, Eq. 10.9
+//      (per-vertex densities from the light end and from the camera end); the library
+//      recomputes the connection densities itself;
+//  (2) the weight on the walk-generated subpaths equals the reference weight
+//      p_s^b / sum p_s'^b computed from those full-path density products.
+// Dirac-derived densities are 1 in the reference (they cancel between the strategies
+// that exist; the library stores 0 and remaps it to 1).
+// Both must reject the deliberate defects BidirFault::mis_without_light_tracing (sums
+// exceed 1) and BidirFault::reverse_pdf_without_cosine.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+
+#include "core/rng.h"
+#include "pathspace/bidir_connect.h"
+#include "pathspace/bidir_subpath.h"
+#include "scene/bsdfs.h"
+#include "scene/shape.h"
+#include "tests/support/test_scenes.h"
+
+using namespace dp;
+using namespace dp::pathspace;
+
+namespace {
+
+bool is_dirac(const BidirVertex& v) { return v.kind == BidirKind::surface && v.bsdf && v.bsdf->is_purely_delta(); }
+bool is_pinhole_or_point(const BidirVertex& v) {
+  return v.kind == BidirKind::camera || (v.kind == BidirKind::light && v.is_delta_light());
+}
+
+double to_area(double pdf, const BidirVertex& from, const BidirVertex& to) {
+  const Vec3d d = (to.sp.p - from.sp.p).cast<double>();
+  const double d2 = d.squaredNorm();
+  const double c = is_pinhole_or_point(to) ? 1.0 : std::abs(to.sp.ng.cast<double>().dot(d)) / std::sqrt(d2);
+  return pdf * c / d2;
+}
+Vec3 dir(const BidirVertex& a, const BidirVertex& b) { return (b.sp.p - a.sp.p).normalized(); }
+double ref_bsdf_pdf(const BidirVertex& v, const Vec3& from, const Vec3& to, scene::TransportMode mode) {
+  return v.bsdf->pdf(scene::BsdfContext{v.sp.uv, mode}, v.sp.shading.to_local(from), v.sp.shading.to_local(to));
+}
+
+// Full path x_0 (light) .. x_{n-1} (pinhole) with reference densities.
+struct Reference {
+  std::vector<BidirVertex> x;
+  std::vector<double> pl, pc;  // area density of x_i sampled from the light end / camera end
+  std::vector<bool> valid;     // strategy s' (= number of light vertices) can generate x
+  std::vector<double> weight;  // reference weight of s'
+};
+
+Reference reference(const scene::Scene& scene, std::vector<BidirVertex> x, bool power) {
+  Reference r;
+  const int n = int(x.size());
+  r.pl.assign(size_t(n), 0.0);
+  r.pc.assign(size_t(n), 0.0);
+  const scene::Emitter* e = x[0].emitter;
+  const bool point = e->kind() == scene::EmitterKind::point;
+  for (int i = 0; i < n; ++i) {
+    if (i == 0) r.pl[0] = double(scene.emitter_pmf(e)) / (point ? 1.0 : double(static_cast<const scene::AreaEmitter*>(e)->shape()->area()));
+    else if (i == 1) {
+      const Vec3 w = dir(x[0], x[1]);
+      const double pd = point ? 1.0 / (4.0 * kPiD) : std::max(0.0, double(x[0].sp.ng.dot(w))) / kPiD;
+      r.pl[1] = to_area(pd, x[0], x[1]);
+    } else r.pl[size_t(i)] = is_dirac(x[size_t(i - 1)]) ? 1.0
+        : to_area(ref_bsdf_pdf(x[size_t(i - 1)], dir(x[size_t(i - 1)], x[size_t(i - 2)]), dir(x[size_t(i - 1)], x[size_t(i)]),
+                           scene::TransportMode::importance), x[size_t(i - 1)], x[size_t(i)]);
+    if (i == n - 1) r.pc[size_t(i)] = 1.0;
+    else if (i == n - 2) r.pc[size_t(i)] = to_area(scene.camera().pdf_direction(dir(x[size_t(n - 1)], x[size_t(i)])), x[size_t(n - 1)], x[size_t(i)]);
+    else r.pc[size_t(i)] = is_dirac(x[size_t(i + 1)]) ? 1.0
+        : to_area(ref_bsdf_pdf(x[size_t(i + 1)], dir(x[size_t(i + 1)], x[size_t(i + 2)]), dir(x[size_t(i + 1)], x[size_t(i)]),
+                           scene::TransportMode::radiance), x[size_t(i + 1)], x[size_t(i)]);
+  }
+  r.valid.assign(size_t(n), false);  // s' = 0 .. n-1 (t' = n - s' >= 1)
+  r.weight.assign(size_t(n), 0.0);
+  double sum = 0;
+  std::vector<double> p(size_t(n), 0.0);
+  for (int sp = 0; sp < n; ++sp) {
+    r.valid[size_t(sp)] = sp == 0 ? !point : !is_dirac(x[size_t(sp - 1)]) && !is_dirac(x[size_t(sp)]);
+    if (!r.valid[size_t(sp)]) continue;
+    double prod = 1.0;
+    for (int i = 0; i < n; ++i) prod *= i < sp ? r.pl[size_t(i)] : r.pc[size_t(i)];
+    p[size_t(sp)] = power ? prod * prod : prod;
+    sum += p[size_t(sp)];
+  }
+  for (int sp = 0; sp < n; ++sp) r.weight[size_t(sp)] = p[size_t(sp)] / sum;
+  r.x = std::move(x);
+  return r;
+}
+
+// Subpaths of split s' rebuilt from the reference path.
+void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vector<BidirVertex>& camera) {
+  const int n = int(r.x.size());
+  light.clear();
+  camera.clear();
+  for (int i = 0; i < sp; ++i) {
+    BidirVertex v = r.x[size_t(i)];
+    if (i == 0) v.kind = BidirKind::light;
+    v.wi = i > 0 ? dir(v, r.x[size_t(i - 1)]) : Vec3::Zero();
+    v.pdf_fwd = float(r.pl[size_t(i)]);
+    v.pdf_rev = float(r.pc[size_t(i)]);
+    v.delta = is_dirac(v);
+    light.push_back(v);
+  }
+  for (int i = n - 1; i >= sp; --i) {
+    BidirVertex v = r.x[size_t(i)];
+    if (i == 0) v.kind = BidirKind::surface;  // s' = 0: the camera walk hit the light
+    v.wi = i < n - 1 ? dir(v, r.x[size_t(i + 1)]) : Vec3::Zero();
+    v.pdf_fwd = float(r.pc[size_t(i)]);
+    v.pdf_rev = float(r.pl[size_t(i)]);
+    v.delta = is_dirac(v);
+    camera.push_back(v);
+  }
+}
+
+struct Outcome {
+  double max_sum_error = 0, max_weight_error = 0;
+  int64_t paths = 0, multi = 0, with_dirac = 0, light_tracing = 0;
+};
+
+Outcome check_scene(const scene::Scene& scene, const MisConfig& config, int samples, uint64_t seed) {
+  Outcome o;
+  const bool power = config.heuristic == MisHeuristic::power;
+  const int max_depth = 6;
+  const SubpathParams cp{max_depth + 1, 3}, lp{max_depth, 3};
+  std::vector<BidirVertex> cam, light, ls, cs;
+  const auto& c = scene.camera();
+  for (int k = 0; k < samples; ++k) {
+    core::Rng rng(seed, uint64_t(k));
+    const Vec2 raster(rng.uniform() * float(c.width()), rng.uniform() * float(c.height()));
+    camera_subpath(scene, raster, cp, rng, cam);
+    light_subpath(scene, lp, rng, light);
+    for (int t = 1; t <= int(cam.size()); ++t)
+      for (int s = 0; s <= int(light.size()); ++s) {
+        if (s + t < 2 || s + t - 1 > max_depth) continue;
+        Connection con;
+        if (!connect(scene, light.data(), s, cam.data(), t, config, con)) continue;
+        std::vector<BidirVertex> x(light.begin(), light.begin() + s);
+        for (int j = t - 1; j >= 0; --j) x.push_back(cam[size_t(j)]);
+        const Reference ref = reference(scene, x, power);
+        ++o.paths;
+        o.light_tracing += t == 1;
+        int valid = 0;
+        bool dirac = false;
+        for (const auto& v : ref.x) dirac = dirac || is_dirac(v);
+        o.with_dirac += dirac;
+        double sum = 0;
+        for (int sp = 0; sp < int(ref.x.size()); ++sp) {
+          if (!ref.valid[size_t(sp)]) continue;
+          ++valid;
+          split(ref, sp, ls, cs);
+          sum += double(mis_weight(scene, ls.data(), sp, cs.data(), int(ref.x.size()) - sp, config));
+        }
+        o.multi += valid >= 3;
+        o.max_sum_error = std::max(o.max_sum_error, std::abs(sum - 1.0));
+        o.max_weight_error = std::max(o.max_weight_error, std::abs(double(con.weight) - ref.weight[size_t(s)]));
+      }
+  }
+  return o;
+}
+
+std::unique_ptr<scene::Scene> glossy_glass_box() {
+  return test::lit_box(scene::make_two_sided(scene::make_conductor(0.2f, 0.2f, scene::MicrofacetType::ggx,
+                                                                   scene::ConductorFresnel{},
+                                                                   scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f)))),
+                       scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx), 16);
+}
+
+void report(const char* what, const Outcome& o) {
+  std::printf("bdpt mis [%s]: %lld paths (%lld with >= 3 strategies, %lld through a Dirac vertex, %lld light-traced), "
+              "max |sum w - 1| %.3g, max |w - w_ref| %.3g\n",
+              what, (long long)o.paths, (long long)o.multi, (long long)o.with_dirac, (long long)o.light_tracing,
+              o.max_sum_error, o.max_weight_error);
+}
+
+}  // namespace
+
+TEST_CASE("bdpt: MIS weights over all strategies of a path sum to 1", "[unit]") {
+  const auto box = glossy_glass_box();
+  const auto furnace = test::furnace_sphere(0.5f, 0.5f, 1.0f, 16);
+  constexpr double kTol = 2e-4;  // float densities, double sums
+  for (const auto heuristic : {MisHeuristic::power, MisHeuristic::balance}) {
+    const char* hname = heuristic == MisHeuristic::power ? "power" : "balance";
+    for (const auto* s : {box.get(), furnace.get()}) {
+      const Outcome o = check_scene(*s, MisConfig{heuristic, BidirFault::none}, 300, 7);
+      report(hname, o);
+      REQUIRE(o.paths > 500);
+      CHECK(o.multi > 100);
+      CHECK(o.max_sum_error < kTol);
+      CHECK(o.max_weight_error < kTol);
+    }
+    CHECK(check_scene(*box, MisConfig{heuristic, BidirFault::none}, 300, 7).with_dirac > 20);
+  }
+}
+
+TEST_CASE("bdpt: the MIS check rejects weights without light tracing or with a missing cosine", "[unit]") {
+  const auto box = glossy_glass_box();
+  for (const auto fault : {BidirFault::mis_without_light_tracing, BidirFault::reverse_pdf_without_cosine}) {
+    const Outcome o = check_scene(*box, MisConfig{MisHeuristic::power, fault}, 300, 7);
+    report(fault == BidirFault::mis_without_light_tracing ? "fault: no light tracing" : "fault: no cosine", o);
+    CHECK(o.max_sum_error > 0.05);
+  }
+}
