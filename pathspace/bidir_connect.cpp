@@ -17,6 +17,7 @@ Rgb scatter(const BidirVertex& v, const Vec3& w, scene::TransportMode mode, bool
 }
 
 bool blocked(const scene::Scene& scene, const BidirVertex& a, const BidirVertex& b) {
+  if (a.infinite()) return scene.occluded(scene.spawn_ray(b.sp, a.sp.ng));
   if (a.on_surface()) return scene.occluded(scene.spawn_segment(a.sp, b.sp.p));
   if (b.on_surface()) return scene.occluded(scene.spawn_segment(b.sp, a.sp.p));
   return scene.occluded(a.sp.p, b.sp.p);
@@ -29,16 +30,19 @@ bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const B
   out = Connection{};
   const BidirVertex& z = camera[t - 1];
   if (s == 0) {
-    if (t < 2 || !z.emitter || z.kind != BidirKind::surface) return false;
-    out.value = z.beta * z.emitter->eval(z.sp, z.wi);
+    if (t < 2 || !z.emitter) return false;
+    if (z.infinite()) out.value = z.beta * light_emit_cos(z, -z.sp.ng);  // the camera walk escaped
+    else if (z.kind == BidirKind::surface) out.value = z.beta * z.emitter->eval(z.sp, z.wi);
+    else return false;
   } else {
     const BidirVertex& y = light[s - 1];
-    if (!y.connectable() || !z.connectable()) return false;
+    if (!y.connectable() || !z.connectable() || z.kind == BidirKind::light) return false;
     if (t == 1 && !y.on_surface()) return false;  // a point light seen by a pinhole: no image
+    // y -> z; a light at infinity lies along its direction at no distance factor.
     const Vec3 d = z.sp.p - y.sp.p;
-    const float dist2 = d.squaredNorm();
+    const float dist2 = y.infinite() ? 1.0f : d.squaredNorm();
     if (!(dist2 > 0.0f)) return false;
-    const Vec3 w = d / std::sqrt(dist2);  // y -> z
+    const Vec3 w = y.infinite() ? Vec3(-y.sp.ng) : Vec3(d / std::sqrt(dist2));
     const bool cosine = config.fault != BidirFault::connection_without_cosine;
     const Rgb fy = scatter(y, w, scene::TransportMode::importance, cosine);
     if (is_black(fy)) return false;

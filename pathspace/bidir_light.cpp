@@ -1,40 +1,32 @@
 #include "pathspace/bidir_light.h"
 
-#include "core/error.h"
+#include <cmath>
+
 #include "core/warp.h"
 #include "scene/shape.h"
 
 namespace dp::pathspace {
 
-namespace {
-const char* kind_name(scene::EmitterKind k) {
-  switch (k) {
-    case scene::EmitterKind::area: return "area";
-    case scene::EmitterKind::point: return "point";
-    case scene::EmitterKind::spot: return "spot";
-    case scene::EmitterKind::directional: return "directional";
-    case scene::EmitterKind::environment: return "environment";
-  }
-  return "unknown";
-}
-}  // namespace
-
-void check_bidir_emitters(const scene::Scene& scene, const std::string& integrator) {
-  for (const auto& e : scene.emitters()) {
-    const scene::EmitterKind k = e->kind();
-    if (k == scene::EmitterKind::area || k == scene::EmitterKind::point || k == scene::EmitterKind::spot) continue;
-    throw ValueError("integrator '" + integrator + "' does not support " + kind_name(k) +
-                     " emitters yet (only area, point and spot lights can start light subpaths)");
-  }
-}
-
 float light_pdf_pos(const scene::Scene& scene, const BidirVertex& v) {
   const scene::Emitter* e = v.emitter;
   if (!e) return 0.0f;
   const float pmf = scene.emitter_pmf(e);
-  if (e->kind() != scene::EmitterKind::area) return pmf;  // delta position: discrete
+  if (e->kind() == scene::EmitterKind::environment) return pmf * e->pdf_direct(v.sp.p, v.sp.p, v.sp.ng, v.sp.ng);
+  if (e->kind() != scene::EmitterKind::area) return pmf;  // delta position or direction: discrete
   const float area = static_cast<const scene::AreaEmitter*>(e)->shape()->area();
   return area > 0.0f ? pmf / area : 0.0f;
+}
+
+float infinite_disk_radius(const scene::Scene& scene) {
+  const float r = scene.scene_radius();
+  return r > 0.0f && std::isfinite(r) ? r : 1.0f;
+}
+
+float light_pdf_next(const scene::Scene& scene, const BidirVertex& v, const BidirVertex& next) {
+  if (!v.infinite()) return solid_angle_to_area(light_pdf_dir(v, (next.sp.p - v.sp.p).normalized()), v, next);
+  const float r = infinite_disk_radius(scene);
+  const float c = next.on_surface() ? std::abs(next.sp.ng.dot(v.sp.ng)) : 1.0f;
+  return c / (kPi * r * r);
 }
 
 float light_pdf_dir(const BidirVertex& v, const Vec3& w) {
@@ -50,6 +42,10 @@ float light_pdf_dir(const BidirVertex& v, const Vec3& w) {
 
 Rgb light_emit_cos(const BidirVertex& v, const Vec3& w) {
   if (!v.emitter) return Rgb::Zero();
+  if (v.emitter->kind() == scene::EmitterKind::environment)
+    return static_cast<const scene::EnvironmentEmitter*>(v.emitter)->eval_direction(v.sp.ng);
+  if (v.emitter->kind() == scene::EmitterKind::directional)
+    return static_cast<const scene::DirectionalEmitter*>(v.emitter)->irradiance();
   if (v.emitter->kind() == scene::EmitterKind::spot) return static_cast<const scene::SpotEmitter*>(v.emitter)->intensity(w);
   if (v.emitter->kind() != scene::EmitterKind::area) return v.emitter->power() * kInv4Pi;  // intensity
   const float c = v.sp.ng.dot(w);

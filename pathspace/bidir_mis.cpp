@@ -26,13 +26,12 @@ float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, con
     // z_{t-1} acts as the light vertex: its density is light selection x area sampling,
     // z_{t-2}'s is the emission direction density.
     z_rev[0] = light_pdf_pos(scene, z);
-    if (t >= 2) z_rev[1] = solid_angle_to_area(light_pdf_dir(z, z.wi), z, camera[t - 2], cos);
+    if (t >= 2) z_rev[1] = light_pdf_next(scene, z, camera[t - 2]);
   } else {
-    const Vec3 yz = (z.sp.p - y->sp.p).normalized();
+    const Vec3 yz = y->infinite() ? Vec3(-y->sp.ng) : Vec3((z.sp.p - y->sp.p).normalized());
     // z_{t-1} generated from y_{s-1} (light walk direction).
-    const float pdf_yz =
-        s == 1 ? light_pdf_dir(*y, yz) : bsdf_pdf(*y, y->wi, yz, scene::TransportMode::importance);
-    z_rev[0] = solid_angle_to_area(pdf_yz, *y, z, cos);
+    z_rev[0] = s == 1 ? light_pdf_next(scene, *y, z)
+                      : solid_angle_to_area(bsdf_pdf(*y, y->wi, yz, scene::TransportMode::importance), *y, z, cos);
     // z_{t-2} generated from z_{t-1}, arriving from y_{s-1}.
     if (t >= 2) z_rev[1] = solid_angle_to_area(bsdf_pdf(z, -yz, z.wi, scene::TransportMode::importance), z,
                                                camera[t - 2], cos);
@@ -57,6 +56,8 @@ float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, con
     const bool delta_i = i == t - 1 ? false : camera[i].delta;
     if (delta_i || camera[i - 1].delta) continue;
     if (i == 1 && config.fault == BidirFault::mis_without_light_tracing) continue;
+    // Light tracing (t = 1) from a light at infinity: nothing to project to the pinhole.
+    if (i == 1 && camera[1].infinite() && config.fault != BidirFault::light_tracing_at_infinity) continue;
     sum += r;
   }
   // Toward the light: strategy (i, s + t - i) for i = s-1 .. 0 connects y_{i-1} to y_i

@@ -27,6 +27,7 @@ enum class BidirFault : uint8_t {
   reverse_pdf_without_cosine,  // the recomputed reverse area densities miss |cos| at the target
   connection_without_cosine,   // a connection's scattering factors miss |cos| (bidir_connect.cpp)
   splat_pixel_rounded,         // light-tracing splats go to the nearest pixel corner's pixel (bdpt_tracer.cpp)
+  light_tracing_at_infinity,   // an environment seen directly counts the impossible (1, 1) strategy
 };
 
 struct MisConfig {

@@ -12,12 +12,39 @@ scene::TransportMode other(scene::TransportMode m) {
   return m == scene::TransportMode::radiance ? scene::TransportMode::importance : scene::TransportMode::radiance;
 }
 
-// Solid-angle density with which the walk leaves `from` (pinhole, light point or
-// scattering surface) toward unit world direction w.
-float leave_pdf(const scene::Scene& scene, const BidirVertex& from, const Vec3& w, scene::TransportMode mode) {
-  if (from.kind == BidirKind::camera) return scene.camera().pdf_direction(w);
-  if (from.kind == BidirKind::light) return light_pdf_dir(from, w);
-  return bsdf_pdf(from, from.wi, w, mode);
+// Area density (direction density if `to` is at infinity) with which the walk leaves
+// `from` (pinhole, light, scattering surface) and arrives at `to`.
+float leave_pdf(const scene::Scene& scene, const BidirVertex& from, const BidirVertex& to, scene::TransportMode mode) {
+  if (from.kind == BidirKind::light) return light_pdf_next(scene, from, to);
+  const Vec3 w = -to.wi;
+  const float pdf = from.kind == BidirKind::camera ? scene.camera().pdf_direction(w) : bsdf_pdf(from, from.wi, w, mode);
+  return solid_angle_to_area(pdf, from, to);
+}
+
+// Sets the forward density of the new vertex path[n] = v and the reverse density of
+// path[n - 2] (the other walk arriving at path[n - 1] from v). A Dirac lobe at
+// path[n - 1] leaves both 0.
+void set_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, BidirVertex& v,
+                   scene::TransportMode mode) {
+  const size_t n = path.size();
+  const BidirVertex& prev = path[n - 1];
+  if (prev.delta) return;
+  v.pdf_fwd = leave_pdf(scene, prev, v, mode);
+  if (n >= 2 && prev.kind == BidirKind::surface)
+    path[n - 2].pdf_rev = solid_angle_to_area(bsdf_pdf(prev, -v.wi, prev.wi, other(mode)), prev, path[n - 2]);
+}
+
+// The camera walk escaped along `d`: the environment as a light vertex at infinity.
+void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb& beta, std::vector<BidirVertex>& path) {
+  BidirVertex v;
+  v.kind = BidirKind::light;
+  v.emitter = scene.environment();
+  v.sp.ng = d;
+  v.sp.p = path.back().sp.p + d * (4.0f * infinite_disk_radius(scene));
+  v.wi = -d;
+  v.beta = beta;
+  set_densities(scene, path, v, scene::TransportMode::radiance);
+  path.push_back(v);
 }
 
 // Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
@@ -26,26 +53,26 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
                  const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path) {
   scene::SurfaceHit hit;
   while (int(path.size()) < params.max_vertices) {
-    if (!scene.intersect(ray, hit)) break;
-    const size_t n = path.size();  // index of the new vertex
-    const BidirVertex& prev = path[n - 1];
+    if (!scene.intersect(ray, hit)) {
+      if (mode == scene::TransportMode::radiance && scene.environment()) add_environment_vertex(scene, ray.d, beta, path);
+      break;
+    }
+    const BidirVertex& prev = path.back();
     BidirVertex v;
     v.sp = hit;
     v.bsdf = hit.bsdf;
     v.emitter = hit.emitter;
-    const Vec3 d = prev.sp.p - hit.p;
-    const float len = d.norm();
-    if (!(len > 0.0f)) break;
-    v.wi = d / len;
+    if (prev.infinite()) {
+      v.wi = prev.sp.ng;  // exactly toward the light at infinity
+    } else {
+      const Vec3 d = prev.sp.p - hit.p;
+      const float len = d.norm();
+      if (!(len > 0.0f)) break;
+      v.wi = d / len;
+    }
     v.beta = beta;
     v.kind = BidirKind::surface;
-    // Forward density of v; reverse density of prev's predecessor (the other walk
-    // arriving at prev from v). A Dirac lobe at prev leaves both 0.
-    if (!prev.delta) {
-      v.pdf_fwd = solid_angle_to_area(leave_pdf(scene, prev, -v.wi, mode), prev, v);
-      if (n >= 2 && prev.kind == BidirKind::surface)
-        path[n - 2].pdf_rev = solid_angle_to_area(bsdf_pdf(prev, -v.wi, prev.wi, other(mode)), prev, path[n - 2]);
-    }
+    set_densities(scene, path, v, mode);
     path.push_back(v);
     if (int(path.size()) >= params.max_vertices || !hit.bsdf) break;
     BidirVertex& cur = path.back();
@@ -123,15 +150,30 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
     ray.tmin = 0.0f;
     ray.tmax = kInfinity;
   } else {
-    return;  // refused by check_bidir_emitters before rendering
+    // At infinity (environment, directional): a direction toward the light, then a ray
+    // origin on a disk of radius R across it, outside the scene (bidir_light.h).
+    const scene::DirectSample ds = e->sample_direct(scene.bounds().center(), u_dir);
+    if (!(ds.pdf > 0.0f)) return;
+    const float r = infinite_disk_radius(scene);
+    const Vec2 disk = core::warp::square_to_uniform_disk_concentric(u_pos);
+    const Frame f = Frame::from_normal(ds.wi);
+    y0.sp.ng = ds.wi;
+    y0.sp.p = scene.bounds().center() + r * f.to_world(Vec3(disk.x(), disk.y(), 1.0f));
+    w = -ds.wi;
+    ray.o = y0.sp.p;
+    ray.d = w;
+    ray.tmin = 0.0f;
+    ray.tmax = kInfinity;
   }
   y0.pdf_fwd = light_pdf_pos(scene, y0);
   if (!(y0.pdf_fwd > 0.0f)) return;
   y0.beta = Rgb::Constant(1.0f / y0.pdf_fwd);
   out.push_back(y0);
-  const float pdf_dir = light_pdf_dir(y0, w);
-  if (!(pdf_dir > 0.0f) || params.max_vertices < 2) return;
-  const Rgb beta = y0.beta * light_emit_cos(y0, w) / pdf_dir;
+  // Density of the ray: a direction (finite lights) or a planar origin (at infinity).
+  const float r = infinite_disk_radius(scene);
+  const float pdf_ray = y0.infinite() ? 1.0f / (kPi * r * r) : light_pdf_dir(y0, w);
+  if (!(pdf_ray > 0.0f) || params.max_vertices < 2) return;
+  const Rgb beta = y0.beta * light_emit_cos(y0, w) / pdf_ray;
   if (is_black(beta)) return;
   random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
 }

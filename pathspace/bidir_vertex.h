@@ -53,8 +53,14 @@ struct BidirVertex {
   bool on_surface() const {
     return kind == BidirKind::surface || (kind == BidirKind::light && emitter->kind() == scene::EmitterKind::area);
   }
-  // A light endpoint with a delta position (point light): no strategy can hit it.
-  bool is_delta_light() const { return kind == BidirKind::light && emitter->kind() != scene::EmitterKind::area; }
+  // A light endpoint with a delta position or direction (point, spot, directional): no
+  // strategy can hit it.
+  bool is_delta_light() const { return kind == BidirKind::light && emitter->is_delta(); }
+  // A light endpoint at infinity (environment, directional): sp.ng holds the unit
+  // direction from the scene toward the light, sp.p a point far along it; densities of
+  // this vertex are directional (solid angle), those of the vertex it lights are planar
+  // (1 / (pi R^2) over a disk of the scene's radius) times the cosine there.
+  bool infinite() const { return kind == BidirKind::light && emitter->is_infinite(); }
   // Can be an endpoint of a deterministic connection (evaluated BSDF or emission).
   bool connectable() const {
     if (kind != BidirKind::surface) return true;
@@ -72,8 +78,10 @@ inline float bsdf_pdf(const BidirVertex& v, const Vec3& from, const Vec3& to, sc
 
 // Solid-angle density `pdf` of the direction from `from` toward `to`, converted to the
 // area density at `to`: pdf |cos theta_to| / d^2 (cosine with to's geometric normal;
-// no cosine when `to` is the pinhole or a point light). Veach 1997, Eq. 8.10.
+// no cosine when `to` is the pinhole or a point light; unchanged when `to` is at
+// infinity). Veach 1997, Eq. 8.10.
 inline float solid_angle_to_area(float pdf, const BidirVertex& from, const BidirVertex& to, bool with_cosine = true) {
+  if (to.infinite()) return pdf;  // a direction density stays one (pbrt-v3's convention)
   const Vec3 d = to.sp.p - from.sp.p;
   const float dist2 = d.squaredNorm();
   if (!(dist2 > 0.0f)) return 0.0f;

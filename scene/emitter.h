@@ -119,6 +119,7 @@ class DirectionalEmitter final : public Emitter {
   DirectSample sample_direct(const Vec3& ref, const Vec2& u) const override;
   float pdf_direct(const Vec3&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
   Rgb power() const override;
+  const Rgb& irradiance() const { return m_irradiance; }
 
  private:
   Vec3 m_direction;

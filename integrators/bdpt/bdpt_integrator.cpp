@@ -2,12 +2,10 @@
 
 #include "integrators/bdpt/bdpt_tracer.h"
 #include "integrators/tile_scheduler.h"
-#include "pathspace/bidir_light.h"
 
 namespace dp::integrators {
 
 RenderResult BdptIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
-  pathspace::check_bidir_emitters(scene, name());
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();
   std::vector<Rgbd> sum(size_t(w) * size_t(h), Rgbd::Zero()), splat_sum(size_t(w) * size_t(h), Rgbd::Zero());

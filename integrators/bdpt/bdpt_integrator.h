@@ -2,7 +2,7 @@
 // strategies, power or balance heuristic) scheduled over tiles with progressive passes.
 // Image = camera-side estimate per pixel (divided by its sample count) + light-tracing
 // splats (scaled by pixel count / light paths traced), merged deterministically
-// (splat_merger.h). Lights: area and point (others are refused with an error naming them).
+// (splat_merger.h). Every light kind: area, point, spot, directional, environment.
 #pragma once
 
 #include "integrators/bdpt/bdpt_settings.h"

@@ -1,7 +1,8 @@
 // BDPT MIS weights (pathspace/bidir_mis.h) on paths sampled by the real subpath walks and
 // connections of small scenes (lit box with a rough conductor and a smooth glass sphere:
 // diffuse, glossy and Dirac vertices; furnace sphere with an emissive inner surface and a
-// point light: a delta-position light). For every connected path x of strategy (s, t):
+// point light: a delta-position light; an open scene under a textured environment and a
+// directional light: lights at infinity). For every connected path x of strategy (s, t):
 //  (1) the weights the library computes for x as sampled by EVERY strategy (s', t') that
 //      can generate it sum to 1 (to float precision), for the power and the balance
 //      heuristic. The subpaths of each split (s', t') are rebuilt from x's vertices with
@@ -35,13 +36,21 @@ bool is_pinhole_or_point(const BidirVertex& v) {
   return v.kind == BidirKind::camera || (v.kind == BidirKind::light && v.is_delta_light());
 }
 
+bool at_infinity(const BidirVertex& v) { return v.kind == BidirKind::light && v.emitter->is_infinite(); }
+
 double to_area(double pdf, const BidirVertex& from, const BidirVertex& to) {
+  if (at_infinity(to)) return pdf;  // densities of a vertex at infinity are directional
   const Vec3d d = (to.sp.p - from.sp.p).cast<double>();
   const double d2 = d.squaredNorm();
   const double c = is_pinhole_or_point(to) ? 1.0 : std::abs(to.sp.ng.cast<double>().dot(d)) / std::sqrt(d2);
   return pdf * c / d2;
 }
-Vec3 dir(const BidirVertex& a, const BidirVertex& b) { return (b.sp.p - a.sp.p).normalized(); }
+// Unit direction a -> b; a vertex at infinity keeps its direction toward the light in ng.
+Vec3 dir(const BidirVertex& a, const BidirVertex& b) {
+  if (at_infinity(b)) return b.sp.ng;
+  if (at_infinity(a)) return -a.sp.ng;
+  return (b.sp.p - a.sp.p).normalized();
+}
 double ref_bsdf_pdf(const BidirVertex& v, const Vec3& from, const Vec3& to, scene::TransportMode mode) {
   return v.bsdf->pdf(scene::BsdfContext{v.sp.uv, mode}, v.sp.shading.to_local(from), v.sp.shading.to_local(to));
 }
@@ -60,10 +69,19 @@ Reference reference(const scene::Scene& scene, std::vector<BidirVertex> x, bool 
   r.pl.assign(size_t(n), 0.0);
   r.pc.assign(size_t(n), 0.0);
   const scene::Emitter* e = x[0].emitter;
-  const bool point = e->kind() == scene::EmitterKind::point;
+  const bool point = e->kind() == scene::EmitterKind::point, delta = e->is_delta();
+  const bool env = e->kind() == scene::EmitterKind::environment, infinite = e->is_infinite();
+  const double pmf = double(scene.emitter_pmf(e));
+  // Lights at infinity (pbrt-v3's convention): origin density pmf * direction density,
+  // the lit vertex's density uniform on a disk of the scene's radius times its cosine.
+  const double disk_r = 0.5 * double(scene.bounds().diagonal());
   for (int i = 0; i < n; ++i) {
-    if (i == 0) r.pl[0] = double(scene.emitter_pmf(e)) / (point ? 1.0 : double(static_cast<const scene::AreaEmitter*>(e)->shape()->area()));
-    else if (i == 1) {
+    if (i == 0) {
+      if (env) r.pl[0] = pmf * double(e->pdf_direct(x[0].sp.p, {}, {}, x[0].sp.ng));
+      else r.pl[0] = delta ? pmf : pmf / double(static_cast<const scene::AreaEmitter*>(e)->shape()->area());
+    } else if (i == 1 && infinite) {
+      r.pl[1] = std::abs(double(x[1].sp.ng.dot(x[0].sp.ng))) / (kPiD * disk_r * disk_r);
+    } else if (i == 1) {
       const Vec3 w = dir(x[0], x[1]);
       const double pd = point ? 1.0 / (4.0 * kPiD) : std::max(0.0, double(x[0].sp.ng.dot(w))) / kPiD;
       r.pl[1] = to_area(pd, x[0], x[1]);
@@ -81,7 +99,9 @@ Reference reference(const scene::Scene& scene, std::vector<BidirVertex> x, bool 
   double sum = 0;
   std::vector<double> p(size_t(n), 0.0);
   for (int sp = 0; sp < n; ++sp) {
-    r.valid[size_t(sp)] = sp == 0 ? !point : !is_dirac(x[size_t(sp - 1)]) && !is_dirac(x[size_t(sp)]);
+    r.valid[size_t(sp)] = sp == 0 ? !delta : !is_dirac(x[size_t(sp - 1)]) && !is_dirac(x[size_t(sp)]);
+    // t' = 1 splats the light vertex where it projects: impossible at infinity.
+    if (sp == n - 1 && at_infinity(x[size_t(sp - 1)])) r.valid[size_t(sp)] = false;
     if (!r.valid[size_t(sp)]) continue;
     double prod = 1.0;
     for (int i = 0; i < n; ++i) prod *= i < sp ? r.pl[size_t(i)] : r.pc[size_t(i)];
@@ -96,6 +116,7 @@ Reference reference(const scene::Scene& scene, std::vector<BidirVertex> x, bool 
 // Subpaths of split s' rebuilt from the reference path.
 void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vector<BidirVertex>& camera) {
   const int n = int(r.x.size());
+  const bool infinite_light = at_infinity(r.x[0]);
   light.clear();
   camera.clear();
   for (int i = 0; i < sp; ++i) {
@@ -109,7 +130,7 @@ void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vec
   }
   for (int i = n - 1; i >= sp; --i) {
     BidirVertex v = r.x[size_t(i)];
-    if (i == 0) v.kind = BidirKind::surface;  // s' = 0: the camera walk hit the light
+    if (i == 0 && !infinite_light) v.kind = BidirKind::surface;  // s' = 0: the camera walk hit the light
     v.wi = i < n - 1 ? dir(v, r.x[size_t(i + 1)]) : Vec3::Zero();
     v.pdf_fwd = float(r.pc[size_t(i)]);
     v.pdf_rev = float(r.pl[size_t(i)]);
@@ -120,7 +141,7 @@ void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vec
 
 struct Outcome {
   double max_sum_error = 0, max_weight_error = 0;
-  int64_t paths = 0, multi = 0, with_dirac = 0, light_tracing = 0;
+  int64_t paths = 0, multi = 0, with_dirac = 0, light_tracing = 0, infinite = 0;
 };
 
 Outcome check_scene(const scene::Scene& scene, const MisConfig& config, int samples, uint64_t seed) {
@@ -145,6 +166,7 @@ Outcome check_scene(const scene::Scene& scene, const MisConfig& config, int samp
         const Reference ref = reference(scene, x, power);
         ++o.paths;
         o.light_tracing += t == 1;
+        o.infinite += at_infinity(ref.x[0]);
         int valid = 0;
         bool dirac = false;
         for (const auto& v : ref.x) dirac = dirac || is_dirac(v);
@@ -172,9 +194,10 @@ std::unique_ptr<scene::Scene> glossy_glass_box() {
 }
 
 void report(const char* what, const Outcome& o) {
-  std::printf("bdpt mis [%s]: %lld paths (%lld with >= 3 strategies, %lld through a Dirac vertex, %lld light-traced), "
-              "max |sum w - 1| %.3g, max |w - w_ref| %.3g\n",
+  std::printf("bdpt mis [%s]: %lld paths (%lld with >= 3 strategies, %lld through a Dirac vertex, %lld light-traced, "
+              "%lld from a light at infinity), max |sum w - 1| %.3g, max |w - w_ref| %.3g\n",
               what, (long long)o.paths, (long long)o.multi, (long long)o.with_dirac, (long long)o.light_tracing,
+              (long long)o.infinite,
               o.max_sum_error, o.max_weight_error);
 }
 
@@ -183,11 +206,15 @@ void report(const char* what, const Outcome& o) {
 TEST_CASE("bdpt: MIS weights over all strategies of a path sum to 1", "[unit]") {
   const auto box = glossy_glass_box();
   const auto furnace = test::furnace_sphere(0.5f, 0.5f, 1.0f, 16);
+  // Lights at infinity: a textured environment and a directional light.
+  const auto sky = test::env_glossy(scene::make_conductor(0.2f, 0.2f, scene::MicrofacetType::ggx, scene::ConductorFresnel{},
+                                                          scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f))),
+                                    16, 2.0f);
   constexpr double kTol = 2e-4;  // float densities, double sums
   for (const auto heuristic : {MisHeuristic::power, MisHeuristic::balance}) {
     const char* hname = heuristic == MisHeuristic::power ? "power" : "balance";
-    for (const auto* s : {box.get(), furnace.get()}) {
-      const Outcome o = check_scene(*s, MisConfig{heuristic, BidirFault::none}, 300, 7);
+    for (const auto* s : {box.get(), furnace.get(), sky.get()}) {
+      const Outcome o = check_scene(*s, MisConfig{heuristic, BidirFault::none}, s == sky.get() ? 1000 : 300, 7);
       report(hname, o);
       REQUIRE(o.paths > 500);
       CHECK(o.multi > 100);
@@ -195,6 +222,7 @@ TEST_CASE("bdpt: MIS weights over all strategies of a path sum to 1", "[unit]") 
       CHECK(o.max_weight_error < kTol);
     }
     CHECK(check_scene(*box, MisConfig{heuristic, BidirFault::none}, 300, 7).with_dirac > 20);
+    CHECK(check_scene(*sky, MisConfig{heuristic, BidirFault::none}, 1000, 7).infinite > 500);
   }
 }
 

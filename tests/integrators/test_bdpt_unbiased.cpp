@@ -3,7 +3,9 @@
 // statistics at a family-wise level of 1% (tests/support/welch.h), on a diffuse lit box
 // and on a lit box with a rough conductor and a smooth glass sphere (glossy and Dirac
 // vertices; caustics through the glass, which BDPT reaches by light tracing and PT by
-// BSDF sampling). Thresholds come from the run-to-run spread. The same test must reject BDPT with a real defect (BidirFault): the
+// BSDF sampling), and on an open scene under a textured environment and a directional
+// light (light subpaths from a disk at infinity): there the MIS that counts light tracing
+// from the environment to the pinhole (a strategy no sample takes) must be rejected. Thresholds come from the run-to-run spread. The same test must reject BDPT with a real defect (BidirFault): the
 // light-tracing strategy left out of the MIS sums, and reverse densities missing their
 // cosine.
 #include <catch2/catch.hpp>
@@ -72,7 +74,7 @@ double verdict(const char* what, const Stats& b, const Stats& p) {
   return worst;
 }
 
-void run_scene(const char* name, const scene::Scene& s) {
+void run_scene(const char* name, const scene::Scene& s, bool faults = true) {
   const Stats p = path_stats(s, 64);
   integrators::BdptSettings settings;
   for (const auto h : {pathspace::MisHeuristic::power, pathspace::MisHeuristic::balance}) {
@@ -80,6 +82,7 @@ void run_scene(const char* name, const scene::Scene& s) {
     const std::string what = std::string(name) + (h == pathspace::MisHeuristic::power ? ", power" : ", balance");
     CHECK(verdict(what.c_str(), bdpt_stats(s, 16, settings), p) < 1.0);
   }
+  if (!faults) return;
   settings.mis.heuristic = pathspace::MisHeuristic::power;
   settings.mis.fault = pathspace::BidirFault::mis_without_light_tracing;
   CHECK(verdict((std::string(name) + ", fault: MIS without light tracing").c_str(), bdpt_stats(s, 16, settings), p) > 1.0);
@@ -99,4 +102,16 @@ TEST_CASE("bdpt: image mean agrees with PT on a box with glossy and glass sphere
                                                                      scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f)))),
                          scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx), kRes);
   run_scene("glossy + glass box", *s);
+}
+
+TEST_CASE("bdpt: image mean agrees with PT under an environment and a directional light", "[stat]") {
+  const auto s = env_glossy(scene::make_conductor(0.2f, 0.2f, scene::MicrofacetType::ggx, scene::ConductorFresnel{},
+                                                  scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f))),
+                            kRes, 2.0f);
+  run_scene("environment + sun", *s, false);
+  integrators::BdptSettings settings;
+  settings.mis.heuristic = pathspace::MisHeuristic::balance;
+  settings.mis.fault = pathspace::BidirFault::light_tracing_at_infinity;
+  CHECK(verdict("environment + sun, balance, fault: light tracing at infinity", bdpt_stats(*s, 16, settings),
+                path_stats(*s, 64)) > 1.0);
 }

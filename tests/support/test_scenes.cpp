@@ -71,7 +71,7 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
-std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution) {
+std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution, float sun) {
   auto s = std::make_unique<scene::Scene>();
   const int grey =
       s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.5f, 0.5f, 0.5f)))));
@@ -89,6 +89,7 @@ std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution) 
     for (int x = 0; x < map.width(); ++x)
       map(x, y) = (x / 4 + y / 4) % 2 == 0 ? Rgb(1.6f, 1.4f, 1.0f) : Rgb(0.15f, 0.2f, 0.3f);
   s->add_emitter(std::make_unique<scene::EnvironmentEmitter>(std::move(map), Mat3::Identity(), 1.0f));
+  if (sun > 0.0f) s->add_emitter(std::make_unique<scene::DirectionalEmitter>(Vec3(0.4f, -1.0f, -0.3f), Rgb::Constant(sun)));
   return finish(std::move(s), Vec3(0.0f, 0.0f, 0.6f), Vec3(0.0f, -0.45f, -1.3f), 50.0f, resolution);
 }
 

@@ -25,6 +25,8 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
 // diffuse sphere beside it that the big one reflects. Built for G-PT's half-vector copy
 // through glossy vertices: with a rough conductor below the shift threshold most camera
 // paths are camera -> glossy -> environment (or -> floor / small sphere).
-std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution);
+// `sun` > 0 adds a directional light of that irradiance from above-left-front (two
+// lights at infinity).
+std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution, float sun = 0.0f);
 
 }  // namespace dp::test
