@@ -13,6 +13,7 @@ function(dp_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(${name} STATIC ${ARG_SOURCES})
   target_link_libraries(${name} PUBLIC dp_options ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  dp_sanitize_target(${name})
 endfunction()
 
 # dp_add_test(name SOURCES ... DEPS ... LABELS unit stat ...): one Catch2 executable;
@@ -22,6 +23,7 @@ function(dp_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE dp_test_main ${ARG_DEPS})
   target_compile_definitions(${name} PRIVATE DP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  dp_sanitize_target(${name})
   foreach(label ${ARG_LABELS})
     add_test(NAME ${name}_${label} COMMAND ${name} "[${label}]" --warn NoTests --warn NoAssertions)
     set_tests_properties(${name}_${label} PROPERTIES LABELS ${label}

@@ -4,7 +4,7 @@
 # test executables below and runs ctest's `sanitize` label (every registered integrator
 # rendering tiny scenes at 1-3 threads, tests/sanitize/) and their `unit` tests. Any
 # ASan, LeakSanitizer or UBSan report aborts the test process, so ctest fails.
-#   DP_SANITIZE_UNITS=all scripts/test_sanitize.sh   every `unit` test (local, ~2x longer)
+#   DP_SANITIZE_UNITS=all scripts/test_sanitize.sh   every folder instrumented, every `unit` test (local, ~2x longer)
 #   scripts/test_sanitize.sh -R test_mlt             extra arguments go to ctest
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +21,10 @@ bash scripts/install_deps.sh
 # scripts/test.sh; the sanitize label's renders go through their code paths anyway.
 unit_tests=(test_pathspace test_mcmc test_mlt)
 
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DDP_SANITIZE=ON -DDP_BUILD_BENCH=OFF >/dev/null
+# Instrumented folders: cmake/sanitize.cmake's DP_SANITIZE_DIRS (CI: core, pathspace,
+# mcmc, integrators, apps, tests; DP_SANITIZE_UNITS=all instruments every folder).
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DDP_SANITIZE=ON -DDP_BUILD_BENCH=OFF \
+  -DDP_SANITIZE_DIRS="core;pathspace;mcmc;integrators;tests;apps" >/dev/null
 # halt_on_error: stop at the first report (UBSan also aborts: -fno-sanitize-recover);
 # detect_leaks: LeakSanitizer at exit; abort_on_error=0: a non-zero exit, no core dump;
 # detect_stack_use_after_return: references to dead stack frames (about 1.4x the run
@@ -29,6 +32,7 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DDP_SANITIZE=ON -DDP_BUILD_
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=0:strict_init_order=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 if [ "${DP_SANITIZE_UNITS:-}" = "all" ]; then
+  cmake -S . -B build-asan -DDP_SANITIZE_DIRS=all >/dev/null
   cmake --build build-asan -j"$(nproc)"
   ctest --test-dir build-asan -L 'sanitize|unit' --output-on-failure -j"$(nproc)" "$@"
 else
