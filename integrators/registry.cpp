@@ -8,6 +8,7 @@
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
+#include "integrators/vcm/vcm_integrator.h"
 
 namespace dp::integrators {
 
@@ -27,6 +28,7 @@ const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
+      {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},

@@ -13,36 +13,40 @@ double remap(float pdf) { return pdf != 0.0f ? double(pdf) : 1.0; }
 
 }  // namespace
 
-float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
-                 const MisConfig& config) {
-  const bool cos = config.fault != BidirFault::reverse_pdf_without_cosine;
-  const BidirVertex* y = s > 0 ? &light[s - 1] : nullptr;
+ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
+                                    const BidirVertex* camera, int t, bool cos) {
+  ReversePdfs r;
   const BidirVertex& z = camera[t - 1];
-  // Reverse densities of the connection vertices and their predecessors (Veach 1997,
-  // Sec. 10.2: the densities the other side would have used). Index 0: the endpoint,
-  // 1: its predecessor.
-  float z_rev[2] = {0, 0}, y_rev[2] = {0, 0};
   if (s == 0) {
     // z_{t-1} acts as the light vertex: its density is light selection x area sampling,
     // z_{t-2}'s is the emission direction density.
-    z_rev[0] = light_pdf_pos(scene, z);
-    if (t >= 2) z_rev[1] = light_pdf_next(scene, z, camera[t - 2]);
-  } else {
-    const Vec3 yz = y->infinite() ? Vec3(-y->sp.ng) : Vec3((z.sp.p - y->sp.p).normalized());
-    // z_{t-1} generated from y_{s-1} (light walk direction).
-    z_rev[0] = s == 1 ? light_pdf_next(scene, *y, z)
-                      : solid_angle_to_area(bsdf_pdf(*y, y->wi, yz, scene::TransportMode::importance), *y, z, cos);
-    // z_{t-2} generated from z_{t-1}, arriving from y_{s-1}.
-    if (t >= 2) z_rev[1] = solid_angle_to_area(bsdf_pdf(z, -yz, z.wi, scene::TransportMode::importance), z,
-                                               camera[t - 2], cos);
-    // y_{s-1} generated from z_{t-1} (camera walk direction).
-    const float pdf_zy =
-        t == 1 ? scene.camera().pdf_direction(-yz) : bsdf_pdf(z, z.wi, -yz, scene::TransportMode::radiance);
-    y_rev[0] = solid_angle_to_area(pdf_zy, z, *y, cos);
-    // y_{s-2} generated from y_{s-1}, arriving from z_{t-1}.
-    if (s >= 2) y_rev[1] = solid_angle_to_area(bsdf_pdf(*y, yz, y->wi, scene::TransportMode::radiance), *y,
-                                               light[s - 2], cos);
+    r.z[0] = light_pdf_pos(scene, z);
+    if (t >= 2) r.z[1] = light_pdf_next(scene, z, camera[t - 2]);
+    return r;
   }
+  const BidirVertex& y = light[s - 1];
+  const Vec3 yz = y.infinite() ? Vec3(-y.sp.ng) : Vec3((z.sp.p - y.sp.p).normalized());
+  // z_{t-1} generated from y_{s-1} (light walk direction).
+  r.z[0] = s == 1 ? light_pdf_next(scene, y, z)
+                  : solid_angle_to_area(bsdf_pdf(y, y.wi, yz, scene::TransportMode::importance), y, z, cos);
+  // z_{t-2} generated from z_{t-1}, arriving from y_{s-1}.
+  if (t >= 2)
+    r.z[1] = solid_angle_to_area(bsdf_pdf(z, -yz, z.wi, scene::TransportMode::importance), z, camera[t - 2], cos);
+  // y_{s-1} generated from z_{t-1} (camera walk direction).
+  const float pdf_zy =
+      t == 1 ? scene.camera().pdf_direction(-yz) : bsdf_pdf(z, z.wi, -yz, scene::TransportMode::radiance);
+  r.y[0] = solid_angle_to_area(pdf_zy, z, y, cos);
+  // y_{s-2} generated from y_{s-1}, arriving from z_{t-1}.
+  if (s >= 2) r.y[1] = solid_angle_to_area(bsdf_pdf(y, yz, y.wi, scene::TransportMode::radiance), y, light[s - 2], cos);
+  return r;
+}
+
+float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
+                 const MisConfig& config) {
+  const ReversePdfs reverse =
+      connection_reverse_pdfs(scene, light, s, camera, t, config.fault != BidirFault::reverse_pdf_without_cosine);
+  const float* z_rev = reverse.z;
+  const float* y_rev = reverse.y;
   const bool power = config.heuristic == MisHeuristic::power;
   auto h = [power](double r) { return power ? r * r : r; };
   double sum = 0.0;

@@ -36,6 +36,18 @@ struct MisConfig {
   bool unweighted = false;  // every strategy's weight is 1 (one strategy rendered alone)
 };
 
+// Reverse area densities a connection (s, t) implies (Veach 1997, Sec. 10.2: the
+// densities the other side would have used): z_rev[0] of camera[t-1] generated from the
+// light side, z_rev[1] of camera[t-2] generated from camera[t-1] arriving from the light
+// side; y_rev[0], y_rev[1] likewise for light[s-1], light[s-2]. For s = 0, camera[t-1] acts
+// as the light endpoint (light selection x position; emission toward camera[t-2]).
+// Unused entries stay 0. `cosine` = false is BidirFault::reverse_pdf_without_cosine.
+struct ReversePdfs {
+  float z[2] = {0, 0}, y[2] = {0, 0};
+};
+ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
+                                    const BidirVertex* camera, int t, bool cosine = true);
+
 // Weight of strategy (s, t) (s + t >= 2, t >= 1) for the path y_0..y_{s-1} z_{t-1}..z_0.
 // For s = 0, camera[t-1] must lie on an area emitter.
 float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,

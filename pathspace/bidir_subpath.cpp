@@ -24,9 +24,8 @@ float leave_pdf(const scene::Scene& scene, const BidirVertex& from, const BidirV
 // Sets the forward density of the new vertex path[n] = v and the reverse density of
 // path[n - 2] (the other walk arriving at path[n - 1] from v). A Dirac lobe at
 // path[n - 1] leaves both 0.
-void set_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, BidirVertex& v,
+void set_densities(const scene::Scene& scene, BidirVertex* path, size_t n, BidirVertex& v,
                    scene::TransportMode mode) {
-  const size_t n = path.size();
   const BidirVertex& prev = path[n - 1];
   if (prev.delta) return;
   v.pdf_fwd = leave_pdf(scene, prev, v, mode);
@@ -43,7 +42,7 @@ void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb&
   v.sp.p = path.back().sp.p + d * (4.0f * infinite_disk_radius(scene));
   v.wi = -d;
   v.beta = beta;
-  set_densities(scene, path, v, scene::TransportMode::radiance);
+  set_densities(scene, path.data(), path.size(), v, scene::TransportMode::radiance);
   path.push_back(v);
 }
 
@@ -72,7 +71,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     }
     v.beta = beta;
     v.kind = BidirKind::surface;
-    set_densities(scene, path, v, mode);
+    set_densities(scene, path.data(), path.size(), v, mode);
     path.push_back(v);
     if (int(path.size()) >= params.max_vertices || !hit.bsdf) break;
     BidirVertex& cur = path.back();
@@ -97,6 +96,22 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
 }
 
 }  // namespace
+
+void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, scene::TransportMode mode) {
+  if (path.empty()) return;
+  BidirVertex& first = path[0];
+  first.pdf_fwd = first.kind == BidirKind::camera ? 1.0f : light_pdf_pos(scene, first);
+  first.pdf_rev = 0.0f;
+  for (size_t n = 1; n < path.size(); ++n) {
+    BidirVertex& v = path[n];
+    const BidirVertex& prev = path[n - 1];
+    if (prev.infinite()) v.wi = prev.sp.ng;
+    else if (v.infinite()) v.wi = -v.sp.ng;
+    else v.wi = (prev.sp.p - v.sp.p).normalized();
+    v.pdf_fwd = v.pdf_rev = 0.0f;
+    set_densities(scene, path.data(), n, v, mode);
+  }
+}
 
 void camera_subpath(const scene::Scene& scene, const Vec2& raster, const SubpathParams& params, core::Rng& rng,
                     std::vector<BidirVertex>& out) {

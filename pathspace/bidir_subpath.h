@@ -26,4 +26,10 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
 void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
                    std::vector<BidirVertex>& out);
 
+// Re-derives wi, pdf_fwd and pdf_rev of every vertex of a given chain from the vertex
+// positions, as the walk in `mode` from path[0] (the pinhole, or a light endpoint) would
+// have set them; `delta` flags are kept (Dirac lobes give 0 densities). Tests use it to
+// cut one full path into the subpaths of every strategy.
+void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, scene::TransportMode mode);
+
 }  // namespace dp::pathspace

@@ -1,0 +1,100 @@
+#include "integrators/vcm/vcm_camera.h"
+
+#include "pathspace/bidir_connect.h"
+#include "pathspace/bidir_subpath.h"
+
+namespace dp::integrators {
+
+namespace {
+
+// f(z.wi, wo) at a camera vertex (radiance mode, no cosine: the photon density carries
+// it); 0 if either direction violates sidedness.
+Rgb eval_at(const pathspace::BidirVertex& z, const Vec3& wo) {
+  const Vec3 wi = z.sp.shading.to_local(z.wi), w = z.sp.shading.to_local(wo);
+  if (!(z.sp.ng.dot(z.wi) * wi.z() > 0.0f) || !(z.sp.ng.dot(wo) * w.z() > 0.0f)) return Rgb::Zero();
+  return z.bsdf->eval(scene::BsdfContext{z.sp.uv, scene::TransportMode::radiance}, wi, w);
+}
+
+}  // namespace
+
+VcmCameraTracer::VcmCameraTracer(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it,
+                                 const LightPathStore& light, const PhotonGrid& grid)
+    : m_scene(scene), m_settings(settings), m_it(it), m_light(light), m_grid(grid) {
+  const double n = double(light.paths());
+  m_merge_norm = n > 0 ? float(1.0 / (kPiD * double(it.radius) * double(it.radius) * n)) : 0.0f;
+}
+
+Rgb VcmCameraTracer::merge(const pathspace::BidirVertex* camera, const pathspace::VcmPrefix* cp, int t,
+                           VcmCameraCounters& counters) const {
+  const pathspace::BidirVertex& z = camera[t - 1];
+  const bool weighted = m_settings.mode != VcmMode::ppm;
+  Rgb sum = Rgb::Zero();
+  ++counters.merge_queries;
+  m_grid.query(z.sp.p, [&](uint32_t k) {
+    const int j = m_light.photon_depth[k];
+    if (j + t - 1 > m_it.max_depth) return;  // path depth: j light segments + t - 1 camera segments
+    const uint32_t v = m_light.photon_vertex[k];
+    const pathspace::BidirVertex* path = &m_light.vertices[v - uint32_t(j)];
+    const Rgb f = eval_at(z, path[j].wi);
+    if (is_black(f)) return;
+    ++counters.merges;
+    const float w = weighted ? pathspace::vcm_merge_weight(path, &m_light.prefixes[v - uint32_t(j)], j, camera, cp, t,
+                                                           m_it.mis)
+                             : 1.0f;
+    sum += w * f * path[j].beta;
+  });
+  return sum * z.beta * m_merge_norm;
+}
+
+bool VcmCameraTracer::sample(const Vec2& raster, int64_t pixel, core::Rng& rng, VcmCameraScratch& sc, Rgb& L,
+                             VcmCameraCounters& counters) const {
+  const pathspace::SubpathParams params{m_it.max_depth + 1, m_settings.rr_depth};
+  pathspace::camera_subpath(m_scene, raster, params, rng, sc.camera);
+  const int nc = int(sc.camera.size());
+  sc.prefixes.resize(size_t(nc));
+  pathspace::vcm_prefixes(sc.camera.data(), nc, true, m_it.mis, sc.prefixes.data());
+  counters.camera_vertices += nc;
+  const pathspace::BidirVertex* cam = sc.camera.data();
+  const pathspace::VcmPrefix* cp = sc.prefixes.data();
+  const uint32_t l0 = m_light.start[size_t(pixel)], l1 = m_light.start[size_t(pixel) + 1];
+  const pathspace::BidirVertex* light = m_light.vertices.data() + l0;
+  const pathspace::VcmPrefix* lp = m_light.prefixes.data() + l0;
+  const int nl = int(l1 - l0);
+  const pathspace::MisConfig unweighted{.unweighted = true};
+  Rgb sum = Rgb::Zero();
+  bool dirac_prefix = true;  // z_1 .. z_{t-2} all scattered through Dirac lobes
+  for (int t = 2; t <= nc; ++t) {
+    const pathspace::BidirVertex& z = cam[t - 1];
+    pathspace::Connection c;
+    // s = 0: the camera walk hit a light. Without connections (vm, ppm) only paths no
+    // merge can produce (Dirac lobes all the way) count, unweighted.
+    if (z.emitter && (m_settings.connects() || dirac_prefix) &&
+        pathspace::connect(m_scene, nullptr, 0, cam, t, unweighted, c)) {
+      const float w = m_settings.connects()
+                          ? pathspace::vcm_connection_weight(m_scene, nullptr, nullptr, 0, cam, cp, t, m_it.mis)
+                          : 1.0f;
+      sum += c.value * w;
+    }
+    if (m_settings.connects())
+      for (int s = 1; s <= nl && s + t - 1 <= m_it.max_depth; ++s) {
+        const bool ok = pathspace::connect(m_scene, light, s, cam, t, unweighted, c);
+        counters.connections += c.tested;
+        counters.occluded += c.occluded;
+        if (!ok) continue;
+        sum += c.value * pathspace::vcm_connection_weight(m_scene, light, lp, s, cam, cp, t, m_it.mis);
+      }
+    if (m_settings.merges() && !m_grid.empty() && t <= m_it.max_depth && pathspace::vcm_mergeable(z, false)) {
+      sum += merge(cam, cp, t, counters);
+      if (m_settings.mode == VcmMode::ppm && !z.delta) break;  // the path's first non-Dirac lobe: merged here
+    }
+    dirac_prefix = dirac_prefix && z.delta;
+  }
+  if (!is_finite(sum)) {
+    ++counters.nan_dropped;
+    return false;
+  }
+  L += sum;
+  return true;
+}
+
+}  // namespace dp::integrators

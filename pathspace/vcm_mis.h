@@ -1,0 +1,77 @@
+// Multiple importance sampling of vertex connection and merging (Georgiev et al. 2012,
+// "Light transport simulation with vertex connection and merging"; the recursive
+// formulation of their technical report "Implementing vertex connection and merging",
+// Eqs. 31-43) in the area-density form of bidir_vertex.h, so that the weight of any
+// connection or merge costs O(1) once each subpath has its prefix quantities.
+//
+// Strategies of a path x_0 .. x_k (light end first), as in bidir_mis.h plus merging:
+//  * connection (s, t): density p_s = prod_{i<s} p->(x_i) prod_{i>=s} p<-(x_i);
+//  * merge at x_j (a light subpath y_0 .. y_j and a camera subpath ending at x_j, both
+//    sampled): p_VM,j = p_j * p->(x_j) * eta, eta = pi r^2 N (N light paths per
+//    iteration: merging uses every light path, connection one; Georgiev et al. 2012,
+//    Eq. 10-11). Possible at surface vertices whose path lobe is not Dirac, 1 <= j,
+//    never at the pinhole or on a light endpoint.
+//  weight = p^b / sum over enabled strategies of p_i^b (b = 1 balance, 2 power).
+//
+// Prefix quantities. For the vertices v_0 .. v_i of one subpath (light or camera
+// order) let D_i = sum over enabled strategies in which the OTHER side generated v_i and
+// more (connections and merges), each as (p / p_i)^b / p->(v_i)^b, where p_i is the
+// connection strategy ending at v_i. Then
+//   D_i = a_i + b_i * h(p<-(v_{i-1})),
+//   a_i = h(1 / p->(v_i)) [connection v_{i-1}--v_i possible]
+//   b_i = h(1 / p->(v_i)) (V [merge at v_{i-1}] + I_{i-1}),   V = h(eta) (0: no merging)
+//   I_i = D_i with v_i an interior vertex (its a_i term dropped if its lobe is Dirac),
+// h(x) = x^b, and p<-(v_{i-1}) is the only factor that depends on where the path
+// continues after v_i: it is stored for interior vertices and recomputed at a connection
+// or merge (this split is the dVCM / dVC pair of the technical report; dVM = dVC/eta).
+// Weights:
+//   connection (s, t): 1 / (1 + W_L + W_C), W_L = h(p<-(y_{s-1})) (V [merge at y_{s-1}] + D^L_{s-1}),
+//                       W_C = h(p<-(z_{t-1})) (V [merge at z_{t-1}] + D^C_{t-1});
+//   merge at (y_j ~ z_{t-1}): 1 / (1 + (D^L_j + D^C_{t-1}) / V).
+// Dirac-derived densities are 0 in storage and count as 1 (they cancel), as in bidir_mis.
+#pragma once
+
+#include <cstdint>
+
+#include "pathspace/bidir_mis.h"
+
+namespace dp::pathspace {
+
+// Deliberate defects the tests must reject (tests/integrators/test_vcm_mis.cpp). C++ only.
+enum class VcmFault : uint8_t {
+  none,
+  merge_without_light_prefix,  // a merge's light-side sum keeps only the connection at the photon (b term lost)
+  dirac_interior_kept,         // a connection ending at an interior Dirac vertex stays in the prefix sums
+};
+
+struct VcmMisConfig {
+  MisHeuristic heuristic = MisHeuristic::power;
+  VcmFault fault = VcmFault::none;
+  bool connections = true;  // vertex connection strategies (camera hits, light tracing, s,t >= 1)
+  float eta = 0.0f;         // pi r^2 * light paths per iteration; 0 = no merging strategies
+};
+
+struct VcmPrefix {
+  double a = 0.0, b = 0.0;  // D_i = a + b h(p<-(v_{i-1})) (header comment)
+};
+
+// Prefix quantities of every vertex of a subpath (light order for `camera_side` false,
+// camera order otherwise): out[0 .. n-1].
+void vcm_prefixes(const BidirVertex* path, int n, bool camera_side, const VcmMisConfig& config, VcmPrefix* out);
+
+// Weight of connection (s, t) (s = 0: the camera walk hit a light at camera[t-1]; t = 1:
+// light tracing), for subpaths with prefix arrays lp (light) and cp (camera).
+float vcm_connection_weight(const scene::Scene& scene, const BidirVertex* light, const VcmPrefix* lp, int s,
+                            const BidirVertex* camera, const VcmPrefix* cp, int t, const VcmMisConfig& config);
+
+// Weight of merging the light vertex light[j] (j >= 1; its light path starts at `light`)
+// at camera vertex camera[t-1] (t >= 2). The path is evaluated at the camera vertex,
+// arriving along the light vertex's direction light[j].wi.
+float vcm_merge_weight(const BidirVertex* light, const VcmPrefix* lp, int j, const BidirVertex* camera,
+                       const VcmPrefix* cp, int t, const VcmMisConfig& config);
+
+// Can a merge happen at this vertex (surface, BSDF with a non-Dirac part)? `interior`:
+// the path continues through the vertex along its stored lobe (Dirac lobes excluded).
+bool vcm_mergeable(const BidirVertex& v, bool interior);
+
+}  // namespace dp::pathspace
