@@ -1,4 +1,4 @@
-// PNG/JPEG via Debian's libstb.
+// PNG/JPEG (and Radiance .hdr for reading) via Debian's libstb.
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -47,10 +47,27 @@ Image read_ldr(const std::string& path, bool linear) {
   return img;
 }
 
+// Radiance RGBE (.hdr, e.g. SmallVCM's output): linear floats, no transfer curve.
+namespace {
+Image read_hdr(const std::string& path) {
+  int w = 0, h = 0, n = 0;
+  float* data = stbi_loadf(path.c_str(), &w, &h, &n, 3);
+  if (!data) {
+    const char* why = stbi_failure_reason();
+    throw IoError(std::string("cannot read image: ") + (why ? why : "unknown error"), path);
+  }
+  Image img(w, h);
+  for (size_t i = 0; i < img.size(); ++i) img[i] = Rgb(data[3 * i], data[3 * i + 1], data[3 * i + 2]);
+  stbi_image_free(data);
+  return img;
+}
+}  // namespace
+
 Image read_image(const std::string& path) {
   std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".exr" ? read_exr(path) : read_ldr(path);
+  if (ext == ".exr") return read_exr(path);
+  return ext == ".hdr" ? read_hdr(path) : read_ldr(path);
 }
 
 }  // namespace dp::core

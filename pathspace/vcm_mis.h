@@ -64,11 +64,25 @@ void vcm_prefixes(const BidirVertex* path, int n, bool camera_side, const VcmMis
 float vcm_connection_weight(const scene::Scene& scene, const BidirVertex* light, const VcmPrefix* lp, int s,
                             const BidirVertex* camera, const VcmPrefix* cp, int t, const VcmMisConfig& config);
 
-// Weight of merging the light vertex light[j] (j >= 1; its light path starts at `light`)
-// at camera vertex camera[t-1] (t >= 2). The path is evaluated at the camera vertex,
-// arriving along the light vertex's direction light[j].wi.
-float vcm_merge_weight(const BidirVertex* light, const VcmPrefix* lp, int j, const BidirVertex* camera,
-                       const VcmPrefix* cp, int t, const VcmMisConfig& config);
+// What a merge needs of a light vertex y_j (j >= 1), compact for the photon grid: its
+// direction toward y_{j-1}, its prefix quantities and the factor converting a solid-angle
+// density leaving y_j toward y_{j-1} into y_{j-1}'s area density (solid_angle_to_area).
+struct VcmPhotonMis {
+  Vec3 wi{0, 0, 0};
+  VcmPrefix prefix;
+  float prev_area = 0;
+};
+VcmPhotonMis vcm_photon_mis(const BidirVertex* light, const VcmPrefix* lp, int j);
+
+// Weight of merging the light vertex y_j (as `photon`) at camera vertex camera[t-1]
+// (t >= 2). The path is evaluated at the camera vertex, arriving along the photon's wi.
+float vcm_merge_weight(const VcmPhotonMis& photon, const BidirVertex* camera, const VcmPrefix* cp, int t,
+                       const VcmMisConfig& config);
+// The same for light[j] of a stored light path (tests).
+inline float vcm_merge_weight(const BidirVertex* light, const VcmPrefix* lp, int j, const BidirVertex* camera,
+                              const VcmPrefix* cp, int t, const VcmMisConfig& config) {
+  return vcm_merge_weight(vcm_photon_mis(light, lp, j), camera, cp, t, config);
+}
 
 // Can a merge happen at this vertex (surface, BSDF with a non-Dirac part)? `interior`:
 // the path continues through the vertex along its stored lobe (Dirac lobes excluded).

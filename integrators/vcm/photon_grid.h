@@ -2,7 +2,9 @@
 // fixed radius r). Cells are 2r wide, so the points within r of a query lie in the
 // 2x2x2 block of cells nearest to it; cells are hashed into a table of about one bucket
 // per point and bucketed by a counting sort (deterministic, no per-cell allocation).
-// Hash collisions only add candidates: every candidate's distance is tested.
+// Hash collisions only add candidates: every candidate's distance is tested. Points are
+// kept in bucket order and queries report that order's slots, so a caller that stores
+// its per-point records in the same order (order()) reads them contiguously.
 #pragma once
 
 #include <algorithm>
@@ -19,7 +21,9 @@ class PhotonGrid {
   // Indexes points[0 .. n-1] for queries of radius r > 0 (points are copied).
   void build(const std::vector<Vec3>& points, float radius);
   bool empty() const { return m_points.empty(); }
-  // fn(i) for every indexed point i with |p_i - q| <= r, in a fixed order.
+  // order()[k] = the input index of the point in slot k.
+  const std::vector<uint32_t>& order() const { return m_index; }
+  // fn(k) for every slot k whose point lies within r of q, in a fixed order.
   template <class Fn>
   void query(const Vec3& q, Fn&& fn) const {
     if (m_points.empty()) return;
@@ -30,14 +34,21 @@ class PhotonGrid {
       base[k] = int(f);
       step[k] = c[k] - f < 0.5f ? -1 : 1;
     }
+    // The 8 bucket ranges first: independent loads the CPU overlaps (the query is
+    // bound by these cache misses, not by arithmetic).
+    // Two of the cells may share a bucket (a hash collision): each bucket is visited once.
+    uint32_t bucket[8], begin[8], end[8];
+    for (int i = 0; i < 8; ++i) {
+      bucket[i] = hash(base[0] + (i & 1) * step[0], base[1] + ((i >> 1) & 1) * step[1], base[2] + (i >> 2) * step[2]);
+      begin[i] = m_start[bucket[i]];
+      end[i] = m_start[bucket[i] + 1];
+      for (int k = 0; k < i; ++k)
+        if (bucket[k] == bucket[i]) end[i] = begin[i];
+    }
     const float r2 = m_radius * m_radius;
-    for (int dz = 0; dz < 2; ++dz)
-      for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) {
-          const uint32_t h = hash(base[0] + dx * step[0], base[1] + dy * step[1], base[2] + dz * step[2]);
-          for (uint32_t k = m_start[h]; k < m_start[h + 1]; ++k)
-            if ((m_points[k] - q).squaredNorm() <= r2) fn(m_index[k]);
-        }
+    for (int i = 0; i < 8; ++i)
+      for (uint32_t k = begin[i]; k < end[i]; ++k)
+        if ((m_points[k] - q).squaredNorm() <= r2) fn(k);
   }
 
  private:

@@ -31,17 +31,13 @@ Rgb VcmCameraTracer::merge(const pathspace::BidirVertex* camera, const pathspace
   Rgb sum = Rgb::Zero();
   ++counters.merge_queries;
   m_grid.query(z.sp.p, [&](uint32_t k) {
-    const int j = m_light.photon_depth[k];
-    if (j + t - 1 > m_it.max_depth) return;  // path depth: j light segments + t - 1 camera segments
-    const uint32_t v = m_light.photon_vertex[k];
-    const pathspace::BidirVertex* path = &m_light.vertices[v - uint32_t(j)];
-    const Rgb f = eval_at(z, path[j].wi);
+    const VcmPhoton& ph = m_light.photons[k];
+    if (ph.depth + t - 1 > m_it.max_depth) return;  // path depth: j light segments + t - 1 camera segments
+    const Rgb f = eval_at(z, ph.mis.wi);
     if (is_black(f)) return;
     ++counters.merges;
-    const float w = weighted ? pathspace::vcm_merge_weight(path, &m_light.prefixes[v - uint32_t(j)], j, camera, cp, t,
-                                                           m_it.mis)
-                             : 1.0f;
-    sum += w * f * path[j].beta;
+    const float w = weighted ? pathspace::vcm_merge_weight(ph.mis, camera, cp, t, m_it.mis) : 1.0f;
+    sum += w * f * ph.beta;
   });
   return sum * z.beta * m_merge_norm;
 }
@@ -56,10 +52,9 @@ bool VcmCameraTracer::sample(const Vec2& raster, int64_t pixel, core::Rng& rng, 
   counters.camera_vertices += nc;
   const pathspace::BidirVertex* cam = sc.camera.data();
   const pathspace::VcmPrefix* cp = sc.prefixes.data();
-  const uint32_t l0 = m_light.start[size_t(pixel)], l1 = m_light.start[size_t(pixel) + 1];
-  const pathspace::BidirVertex* light = m_light.vertices.data() + l0;
-  const pathspace::VcmPrefix* lp = m_light.prefixes.data() + l0;
-  const int nl = int(l1 - l0);
+  const pathspace::VcmPrefix* lp = nullptr;
+  int nl = 0;
+  const pathspace::BidirVertex* light = m_light.path(pixel, &lp, &nl);
   const pathspace::MisConfig unweighted{.unweighted = true};
   Rgb sum = Rgb::Zero();
   bool dirac_prefix = true;  // z_1 .. z_{t-2} all scattered through Dirac lobes

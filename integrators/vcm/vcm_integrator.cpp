@@ -75,8 +75,10 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
       interrupted = true;
       break;
     }
+    if (m_settings.merges()) light.gather_positions();
     if (m_settings.merges() && !light.photon_pos.empty()) {
       grid.build(light.photon_pos, it.radius);
+      light.gather_photons(grid.order());
       ++totals.grid_builds;
     } else {
       grid.build({}, it.radius);
@@ -110,7 +112,8 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
       }
     }
     // Light tracing: N = pixel count light paths, so a splat adds its value as is.
-    for (const Splat& s : light.splats) iter[size_t(s.pixel)] += s.value.cast<double>();
+    for (const LightChunk& c : light.chunks)
+      for (const Splat& s : c.splats) iter[size_t(s.pixel)] += s.value.cast<double>();
     for (size_t i = 0; i < total.size(); ++i) total[i] += iter[i];
     for (const VcmCameraCounters& c : tile_counters) {
       totals.camera.camera_vertices += c.camera_vertices;
@@ -125,7 +128,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
     totals.light.occluded += lc.occluded;
     totals.light.splats += lc.splats;
     totals.light.nan_dropped += lc.nan_dropped;
-    totals.photons += int64_t(light.photon_pos.size());
+    totals.photons += m_settings.merges() ? int64_t(light.photon_pos.size()) : 0;
     radius = it.radius;
     ++done;
     if (timed) progress.set_fraction(std::min(1.0, timer.seconds() / options.time_budget));

@@ -11,20 +11,10 @@ namespace dp::integrators {
 
 namespace {
 
-constexpr int64_t kChunk = 1024;  // light paths per work item
-
-struct Chunk {
-  std::vector<pathspace::BidirVertex> vertices;
-  std::vector<pathspace::VcmPrefix> prefixes;
-  std::vector<uint32_t> length;
-  std::vector<Splat> splats;
-  VcmLightCounters counters;
-};
-
 // Light tracing of one light path: every y_{s-1} connected to the pinhole z_0.
 void light_trace(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it,
                  const std::vector<pathspace::BidirVertex>& path, const std::vector<pathspace::VcmPrefix>& pre,
-                 const pathspace::BidirVertex& z0, Chunk& chunk) {
+                 const pathspace::BidirVertex& z0, LightChunk& chunk) {
   const pathspace::VcmPrefix z0_prefix{};
   const int width = scene.camera().width(), height = scene.camera().height();
   const size_t first = chunk.splats.size();
@@ -50,71 +40,91 @@ void light_trace(const scene::Scene& scene, const VcmSettings& settings, const V
   }
 }
 
+// Photons of the path just appended to `chunk` (starting at vertex `first`).
+void add_photons(const VcmIteration& it, size_t first, LightChunk& chunk) {
+  const size_t len = chunk.vertices.size() - first;
+  for (size_t j = 1; j < len && int(j) < it.max_depth; ++j) {
+    const pathspace::BidirVertex& y = chunk.vertices[first + j];
+    if (!pathspace::vcm_mergeable(y, false)) continue;
+    VcmPhoton ph;
+    ph.mis = pathspace::vcm_photon_mis(&chunk.vertices[first], &chunk.prefixes[first], int(j));
+    ph.beta = y.beta;
+    ph.depth = int32_t(j);
+    chunk.photons.push_back(ph);
+    chunk.photon_pos.push_back(y.sp.p);
+  }
+}
+
 }  // namespace
+
+void LightChunk::clear() {
+  vertices.clear();
+  prefixes.clear();
+  start.clear();
+  photons.clear();
+  photon_pos.clear();
+  splats.clear();
+  counters = VcmLightCounters{};
+  done = false;
+}
+
+void LightPathStore::gather_positions() {
+  photon_pos.clear();
+  for (const LightChunk& c : chunks) photon_pos.insert(photon_pos.end(), c.photon_pos.begin(), c.photon_pos.end());
+}
+
+void LightPathStore::gather_photons(const std::vector<uint32_t>& order) {
+  std::vector<const VcmPhoton*> input;
+  input.reserve(order.size());
+  for (const LightChunk& c : chunks)
+    for (const VcmPhoton& ph : c.photons) input.push_back(&ph);
+  photons.resize(order.size());
+  for (size_t k = 0; k < order.size(); ++k) photons[k] = *input[order[k]];
+}
 
 bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it, int64_t paths,
                        int threads, const std::atomic<bool>* stop, LightPathStore& out, VcmLightCounters& counters) {
-  const int64_t chunks = (paths + kChunk - 1) / kChunk;
-  std::vector<Chunk> result(static_cast<size_t>(chunks));
-  std::vector<char> done(static_cast<size_t>(chunks), 0);
+  const int64_t chunks = (paths + kLightChunk - 1) / kLightChunk;
+  out.chunks.resize(size_t(chunks));
+  out.path_count = paths;
   const pathspace::SubpathParams params{it.max_depth, settings.rr_depth};
   std::vector<pathspace::BidirVertex> z0;
   core::Rng unused;
   pathspace::camera_subpath(scene, Vec2(0, 0), pathspace::SubpathParams{1, settings.rr_depth}, unused, z0);
+  const bool photons = settings.merges();
   core::parallel_for(
       chunks, threads,
       [&](int64_t c, int) {
-        Chunk& chunk = result[size_t(c)];
+        LightChunk& chunk = out.chunks[size_t(c)];
+        chunk.clear();
         core::Rng rng(it.seed, (uint64_t(it.index) << 32) | uint64_t(c));
         std::vector<pathspace::BidirVertex> path;
         std::vector<pathspace::VcmPrefix> pre;
-        const int64_t end = std::min(paths, (c + 1) * kChunk);
-        for (int64_t p = c * kChunk; p < end; ++p) {
+        const int64_t end = std::min(paths, (c + 1) * kLightChunk);
+        chunk.start.push_back(0);
+        for (int64_t p = c * kLightChunk; p < end; ++p) {
           pathspace::light_subpath(scene, params, rng, path);
           pre.resize(path.size());
           pathspace::vcm_prefixes(path.data(), int(path.size()), false, it.mis, pre.data());
           if (settings.light_traces()) light_trace(scene, settings, it, path, pre, z0[0], chunk);
+          const size_t first = chunk.vertices.size();
           chunk.vertices.insert(chunk.vertices.end(), path.begin(), path.end());
           chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());
-          chunk.length.push_back(uint32_t(path.size()));
+          chunk.start.push_back(uint32_t(chunk.vertices.size()));
           chunk.counters.light_vertices += int64_t(path.size());
+          if (photons) add_photons(it, first, chunk);
         }
-        done[size_t(c)] = 1;
+        chunk.counters.splats = int64_t(chunk.splats.size());
+        chunk.done = true;
       },
       stop);
-  if (std::find(done.begin(), done.end(), 0) != done.end()) return false;
-
-  out = LightPathStore{};
-  size_t total = 0;
-  for (const Chunk& c : result) total += c.vertices.size();
-  out.vertices.reserve(total);
-  out.prefixes.reserve(total);
-  out.start.reserve(size_t(paths) + 1);
-  out.start.push_back(0);
-  const bool photons = settings.merges();
-  for (Chunk& c : result) {
-    size_t v = out.vertices.size();
-    for (uint32_t len : c.length) {
-      if (photons)
-        for (uint32_t j = 1; j < len; ++j) {
-          const pathspace::BidirVertex& y = c.vertices[v - out.vertices.size() + j];
-          if (!pathspace::vcm_mergeable(y, false)) continue;
-          out.photon_vertex.push_back(uint32_t(v + j));
-          out.photon_depth.push_back(uint16_t(j));
-          out.photon_pos.push_back(y.sp.p);
-        }
-      v += len;
-      out.start.push_back(uint32_t(v));
-    }
-    out.vertices.insert(out.vertices.end(), c.vertices.begin(), c.vertices.end());
-    out.prefixes.insert(out.prefixes.end(), c.prefixes.begin(), c.prefixes.end());
-    out.splats.insert(out.splats.end(), c.splats.begin(), c.splats.end());
+  for (const LightChunk& c : out.chunks) {
+    if (!c.done) return false;
     counters.light_vertices += c.counters.light_vertices;
     counters.connections += c.counters.connections;
     counters.occluded += c.counters.occluded;
-    counters.splats += int64_t(c.splats.size());
+    counters.splats += c.counters.splats;
     counters.nan_dropped += c.counters.nan_dropped;
-    c = Chunk{};
   }
   return true;
 }

@@ -18,19 +18,52 @@
 
 namespace dp::integrators {
 
-struct LightPathStore {
-  std::vector<pathspace::BidirVertex> vertices;
-  std::vector<pathspace::VcmPrefix> prefixes;  // parallel to vertices
-  std::vector<uint32_t> start;                 // path p: vertices [start[p], start[p + 1])
-  std::vector<uint32_t> photon_vertex;         // photon k: index into vertices
-  std::vector<uint16_t> photon_depth;          // photon k: j (its index within its light path)
-  std::vector<Vec3> photon_pos;
-  std::vector<Splat> splats;                   // light tracing, in chunk order
-  size_t paths() const { return start.empty() ? 0 : start.size() - 1; }
+// A light vertex a merge can use, with everything the merge reads (no access to the
+// stored paths): throughput, MIS record, path depth j.
+struct VcmPhoton {
+  pathspace::VcmPhotonMis mis;
+  Rgb beta = Rgb::Zero();
+  int32_t depth = 0;
 };
 
 struct VcmLightCounters {
   int64_t light_vertices = 0, connections = 0, occluded = 0, splats = 0, nan_dropped = 0;
+};
+
+// The light paths of one chunk (kLightChunk consecutive paths), reused across iterations
+// (cleared, capacity kept: no page faults per iteration).
+struct LightChunk {
+  std::vector<pathspace::BidirVertex> vertices;
+  std::vector<pathspace::VcmPrefix> prefixes;  // parallel to vertices
+  std::vector<uint32_t> start;                 // local path i: vertices [start[i], start[i + 1])
+  std::vector<VcmPhoton> photons;
+  std::vector<Vec3> photon_pos;
+  std::vector<Splat> splats;
+  VcmLightCounters counters;
+  bool done = false;
+  void clear();
+};
+
+constexpr int64_t kLightChunk = 1024;  // light paths per work item
+
+struct LightPathStore {
+  std::vector<LightChunk> chunks;
+  std::vector<VcmPhoton> photons;  // every chunk's, in the grid's slot order (gather_photons)
+  std::vector<Vec3> photon_pos;    // every chunk's, in chunk order (the grid's input)
+  int64_t path_count = 0;
+  size_t paths() const { return size_t(path_count); }
+  // Light path p: its vertices and prefixes, and its length.
+  const pathspace::BidirVertex* path(int64_t p, const pathspace::VcmPrefix** prefixes, int* length) const {
+    const LightChunk& c = chunks[size_t(p / kLightChunk)];
+    const size_t i = size_t(p % kLightChunk);
+    *prefixes = c.prefixes.data() + c.start[i];
+    *length = int(c.start[i + 1] - c.start[i]);
+    return c.vertices.data() + c.start[i];
+  }
+  // Concatenates the chunks' photon positions (chunk order) into photon_pos.
+  void gather_positions();
+  // Fills `photons` in the grid's slot order: photons[k] = input photon order[k].
+  void gather_photons(const std::vector<uint32_t>& order);
 };
 
 struct VcmIteration {
@@ -41,7 +74,8 @@ struct VcmIteration {
   float radius = 0;             // merging radius of this iteration
 };
 
-// Traces `paths` light subpaths into `out`; returns false if `stop` interrupted it.
+// Traces `paths` light subpaths into `out` (its chunks; photons listed per chunk when the
+// mode merges); returns false if `stop` interrupted it.
 bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it, int64_t paths,
                        int threads, const std::atomic<bool>* stop, LightPathStore& out, VcmLightCounters& counters);
 
