@@ -3,7 +3,8 @@
 // at a family-wise level of 1% (tests/support/welch.h), thresholds from the run-to-run
 // spread:
 //  * mode=bpt and mode=lt are unbiased: against PT on the lit box with a rough conductor
-//    and a smooth glass sphere (glossy and Dirac vertices, caustics);
+//    and a smooth glass sphere (glossy and Dirac vertices, caustics), bpt and vcm also
+//    under an environment and a directional light (light subpaths from infinity);
 //  * mode=vcm, vm and ppm are consistent: at a small merging radius (0.2% of the scene
 //    radius, shrinking with alpha = 0.75) their bias is below the test's resolution;
 //  * merging is consistent: at a fixed radius of 30% of the scene radius the same test
@@ -109,6 +110,17 @@ TEST_CASE("vcm: modes vcm, vm and ppm agree with PT at a small radius", "[stat]"
   CHECK(verdict("glossy + glass box, mode=vcm", vcm_stats(*s, 16, mode(integrators::VcmMode::vcm, 0.02f)), p) < 1.0);
   CHECK(verdict("glossy + glass box, mode=vm", vcm_stats(*s, 32, mode(integrators::VcmMode::vm, 0.01f)), p) < 1.0);
   CHECK(verdict("glossy + glass box, mode=ppm", vcm_stats(*s, 32, mode(integrators::VcmMode::ppm, 0.01f)), p) < 1.0);
+}
+
+TEST_CASE("vcm: modes bpt and vcm agree with PT under an environment and a directional light", "[stat]") {
+  // Light subpaths from a disk at infinity; merges whose photon's predecessor is the
+  // light at infinity (directional density at y_0).
+  const auto s = env_glossy(scene::make_conductor(0.2f, 0.2f, scene::MicrofacetType::ggx, scene::ConductorFresnel{},
+                                                  scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f))),
+                            kRes, 2.0f);
+  const Stats p = path_stats(*s, 64);
+  CHECK(verdict("environment + sun, mode=bpt", vcm_stats(*s, 16, mode(integrators::VcmMode::bpt)), p) < 1.0);
+  CHECK(verdict("environment + sun, mode=vcm", vcm_stats(*s, 16, mode(integrators::VcmMode::vcm, 0.02f)), p) < 1.0);
 }
 
 TEST_CASE("vcm: merging is consistent: a large fixed radius is biased, a shrinking one is not", "[stat]") {
