@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/rng.h"
+#include "pathspace/bidir_subpath.h"
 #include "scene/shape.h"
 
 namespace dp::test {
@@ -109,6 +111,28 @@ void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vec
     v.pdf_rev = float(r.pl[size_t(i)]);
     v.delta = is_dirac(v);
     camera.push_back(v);
+  }
+}
+
+void for_each_connection(const scene::Scene& scene, int max_depth, int samples, uint64_t seed,
+                         const pathspace::MisConfig& config, const ConnectionVisitor& fn) {
+  const pathspace::SubpathParams cp{max_depth + 1, 3}, lp{max_depth, 3};
+  std::vector<BidirVertex> cam, light, x;
+  const auto& c = scene.camera();
+  for (int k = 0; k < samples; ++k) {
+    core::Rng rng(seed, uint64_t(k));
+    const Vec2 raster(rng.uniform() * float(c.width()), rng.uniform() * float(c.height()));
+    pathspace::camera_subpath(scene, raster, cp, rng, cam);
+    pathspace::light_subpath(scene, lp, rng, light);
+    for (int t = 1; t <= int(cam.size()); ++t)
+      for (int s = 0; s <= int(light.size()); ++s) {
+        if (s + t < 2 || s + t - 1 > max_depth) continue;
+        pathspace::Connection con;
+        if (!pathspace::connect(scene, light.data(), s, cam.data(), t, config, con)) continue;
+        x.assign(light.begin(), light.begin() + s);
+        for (int j = t - 1; j >= 0; --j) x.push_back(cam[size_t(j)]);
+        fn(k, light, cam, s, t, con, x);
+      }
   }
 }
 

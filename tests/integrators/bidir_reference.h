@@ -6,9 +6,11 @@
 // exist; the library stores 0 and remaps it to 1). Used by test_bdpt_mis and test_vcm_mis.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
-#include "pathspace/bidir_vertex.h"
+#include "pathspace/bidir_connect.h"
 
 namespace dp::test {
 
@@ -27,5 +29,14 @@ struct Reference {
 Reference reference(const scene::Scene& scene, std::vector<BidirVertex> x, bool power);
 // Subpaths of split s' rebuilt from the reference path.
 void split(const Reference& r, int sp, std::vector<BidirVertex>& light, std::vector<BidirVertex>& camera);
+
+// Walks `samples` camera + light subpath pairs (stream (seed, k), rr_depth 3, depth <= max_depth)
+// and calls fn(k, light, camera, s, t, connection, x) for every strategy (s, t) that connect()
+// with `config` accepts; x is the full path y_0..y_{s-1} z_{t-1}..z_0.
+using ConnectionVisitor =
+    std::function<void(int k, const std::vector<BidirVertex>& light, const std::vector<BidirVertex>& camera, int s,
+                       int t, const pathspace::Connection& connection, const std::vector<BidirVertex>& x)>;
+void for_each_connection(const scene::Scene& scene, int max_depth, int samples, uint64_t seed,
+                         const pathspace::MisConfig& config, const ConnectionVisitor& fn);
 
 }  // namespace dp::test

@@ -42,41 +42,29 @@ Outcome check_scene(const scene::Scene& scene, const MisConfig& config, int samp
   Outcome o;
   const bool power = config.heuristic == MisHeuristic::power;
   const int max_depth = 6;
-  const SubpathParams cp{max_depth + 1, 3}, lp{max_depth, 3};
-  std::vector<BidirVertex> cam, light, ls, cs;
-  const auto& c = scene.camera();
-  for (int k = 0; k < samples; ++k) {
-    core::Rng rng(seed, uint64_t(k));
-    const Vec2 raster(rng.uniform() * float(c.width()), rng.uniform() * float(c.height()));
-    camera_subpath(scene, raster, cp, rng, cam);
-    light_subpath(scene, lp, rng, light);
-    for (int t = 1; t <= int(cam.size()); ++t)
-      for (int s = 0; s <= int(light.size()); ++s) {
-        if (s + t < 2 || s + t - 1 > max_depth) continue;
-        Connection con;
-        if (!connect(scene, light.data(), s, cam.data(), t, config, con)) continue;
-        std::vector<BidirVertex> x(light.begin(), light.begin() + s);
-        for (int j = t - 1; j >= 0; --j) x.push_back(cam[size_t(j)]);
-        const Reference ref = reference(scene, x, power);
-        ++o.paths;
-        o.light_tracing += t == 1;
-        o.infinite += at_infinity(ref.x[0]);
-        int valid = 0;
-        bool dirac = false;
-        for (const auto& v : ref.x) dirac = dirac || is_dirac(v);
-        o.with_dirac += dirac;
-        double sum = 0;
-        for (int sp = 0; sp < int(ref.x.size()); ++sp) {
-          if (!ref.valid[size_t(sp)]) continue;
-          ++valid;
-          split(ref, sp, ls, cs);
-          sum += double(mis_weight(scene, ls.data(), sp, cs.data(), int(ref.x.size()) - sp, config));
-        }
-        o.multi += valid >= 3;
-        o.max_sum_error = std::max(o.max_sum_error, std::abs(sum - 1.0));
-        o.max_weight_error = std::max(o.max_weight_error, std::abs(double(con.weight) - ref.weight[size_t(s)]));
-      }
-  }
+  std::vector<BidirVertex> ls, cs;
+  for_each_connection(scene, max_depth, samples, seed, config,
+                      [&](int, const std::vector<BidirVertex>&, const std::vector<BidirVertex>&, int s, int t,
+                          const Connection& con, const std::vector<BidirVertex>& x) {
+    const Reference ref = reference(scene, x, power);
+    ++o.paths;
+    o.light_tracing += t == 1;
+    o.infinite += at_infinity(ref.x[0]);
+    int valid = 0;
+    bool dirac = false;
+    for (const auto& v : ref.x) dirac = dirac || is_dirac(v);
+    o.with_dirac += dirac;
+    double sum = 0;
+    for (int sp = 0; sp < int(ref.x.size()); ++sp) {
+      if (!ref.valid[size_t(sp)]) continue;
+      ++valid;
+      split(ref, sp, ls, cs);
+      sum += double(mis_weight(scene, ls.data(), sp, cs.data(), int(ref.x.size()) - sp, config));
+    }
+    o.multi += valid >= 3;
+    o.max_sum_error = std::max(o.max_sum_error, std::abs(sum - 1.0));
+    o.max_weight_error = std::max(o.max_weight_error, std::abs(double(con.weight) - ref.weight[size_t(s)]));
+  });
   return o;
 }
 

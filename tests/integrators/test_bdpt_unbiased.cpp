@@ -15,6 +15,7 @@
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/quiet_options.h"
+#include "tests/support/block_stats.h"
 #include "tests/support/welch.h"
 
 using namespace dp;
@@ -25,33 +26,11 @@ constexpr int kRes = 16, kBlock = 4, kRuns = 10, kDepth = 5;
 constexpr double kAlpha = 0.01;
 
 
-// stats[0][run] = image mean; stats[1 + b][run] = mean of block b (channel mean).
-using Stats = std::vector<std::vector<double>>;
+using Stats = BlockStats;
 
-void add_run(Stats& st, const core::Image& img) {
-  const int nb = kRes / kBlock;
-  if (st.empty()) st.assign(size_t(1 + nb * nb), {});
-  std::vector<double> blocks(size_t(nb * nb), 0.0);
-  double total = 0;
-  for (int y = 0; y < kRes; ++y)
-    for (int x = 0; x < kRes; ++x) {
-      const double v = double(img(x, y).mean());
-      total += v;
-      blocks[size_t((y / kBlock) * nb + x / kBlock)] += v;
-    }
-  st[0].push_back(total / double(kRes * kRes));
-  for (size_t b = 0; b < blocks.size(); ++b) st[1 + b].push_back(blocks[b] / double(kBlock * kBlock));
-}
+void add_run(Stats& st, const core::Image& img) { add_block_run(st, img, kBlock); }
 
-Stats path_stats(const scene::Scene& s, int spp) {
-  Stats st;
-  for (int r = 0; r < kRuns; ++r) {
-    integrators::Settings settings;
-    auto pt = integrators::make_integrator("path", settings);
-    add_run(st, pt->render(s, quiet_options(spp, 1000 + uint64_t(r), kDepth)).layers[0].image);
-  }
-  return st;
-}
+Stats path_stats(const scene::Scene& s, int spp) { return path_block_stats(s, kRuns, spp, kDepth, kBlock); }
 
 Stats bdpt_stats(const scene::Scene& s, int spp, const integrators::BdptSettings& settings) {
   Stats st;

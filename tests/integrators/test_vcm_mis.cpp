@@ -72,58 +72,49 @@ Outcome check_scene(const scene::Scene& scene, const VcmMisConfig& config, int s
   Outcome o;
   const bool power = config.heuristic == MisHeuristic::power;
   const int max_depth = 6;
-  const SubpathParams cparams{max_depth + 1, 3}, lparams{max_depth, 3};
-  std::vector<BidirVertex> cam, light, ls, cs, unused;
+  std::vector<BidirVertex> ls, cs, unused;
   std::vector<VcmPrefix> lp, cp, lps, cps;
-  const auto& c = scene.camera();
-  const MisConfig unweighted{.unweighted = true};
-  for (int k = 0; k < samples; ++k) {
-    core::Rng rng(seed, uint64_t(k));
-    const Vec2 raster(rng.uniform() * float(c.width()), rng.uniform() * float(c.height()));
-    camera_subpath(scene, raster, cparams, rng, cam);
-    light_subpath(scene, lparams, rng, light);
-    prefixes(cam, true, config, cp);
-    prefixes(light, false, config, lp);
-    for (int t = 1; t <= int(cam.size()); ++t)
-      for (int s = 0; s <= int(light.size()); ++s) {
-        if (s + t < 2 || s + t - 1 > max_depth) continue;
-        Connection con;
-        if (!connect(scene, light.data(), s, cam.data(), t, unweighted, con)) continue;
-        std::vector<BidirVertex> x(light.begin(), light.begin() + s);
-        for (int j = t - 1; j >= 0; --j) x.push_back(cam[size_t(j)]);
-        const Reference ref = reference(scene, x, power);
-        const int n = int(ref.x.size());
-        ++o.paths;
-        bool dirac = false, merge = false;
-        for (int j = 0; j < n; ++j) {
-          dirac = dirac || is_dirac(ref.x[size_t(j)]);
-          merge = merge || (config.eta > 0 && mergeable_ref(ref, j));
-        }
-        o.with_dirac += dirac;
-        o.with_merge += merge;
-        const double w = vcm_connection_weight(scene, light.data(), lp.data(), s, cam.data(), cp.data(), t, config);
-        o.max_weight_error = std::max(o.max_weight_error, std::abs(w - reference_weight(ref, config.eta, power, s, -1)));
-        double sum = 0;
-        for (int sp = 0; sp < n; ++sp) {
-          if (!ref.valid[size_t(sp)]) continue;
-          split(ref, sp, ls, cs);
-          prefixes(ls, false, config, lps);
-          prefixes(cs, true, config, cps);
-          sum += double(vcm_connection_weight(scene, ls.data(), lps.data(), sp, cs.data(), cps.data(), n - sp, config));
-        }
-        for (int j = 1; config.eta > 0 && j + 1 < n; ++j) {
-          if (!mergeable_ref(ref, j)) continue;
-          split(ref, j + 1, ls, unused);
-          split(ref, j, unused, cs);
-          prefixes(ls, false, config, lps);
-          prefixes(cs, true, config, cps);
-          const double wm = vcm_merge_weight(ls.data(), lps.data(), j, cs.data(), cps.data(), n - j, config);
-          o.max_weight_error = std::max(o.max_weight_error, std::abs(wm - reference_weight(ref, config.eta, power, -1, j)));
-          sum += wm;
-        }
-        o.max_sum_error = std::max(o.max_sum_error, std::abs(sum - 1.0));
-      }
-  }
+  int prefixed = -1;  // sample whose subpaths lp / cp belong to
+  for_each_connection(scene, max_depth, samples, seed, MisConfig{.unweighted = true},
+                      [&](int k, const std::vector<BidirVertex>& light, const std::vector<BidirVertex>& cam, int s, int t,
+                          const Connection&, const std::vector<BidirVertex>& x) {
+    if (k != prefixed) {
+      prefixes(cam, true, config, cp);
+      prefixes(light, false, config, lp);
+      prefixed = k;
+    }
+    const Reference ref = reference(scene, x, power);
+    const int n = int(ref.x.size());
+    ++o.paths;
+    bool dirac = false, merge = false;
+    for (int j = 0; j < n; ++j) {
+      dirac = dirac || is_dirac(ref.x[size_t(j)]);
+      merge = merge || (config.eta > 0 && mergeable_ref(ref, j));
+    }
+    o.with_dirac += dirac;
+    o.with_merge += merge;
+    const double w = vcm_connection_weight(scene, light.data(), lp.data(), s, cam.data(), cp.data(), t, config);
+    o.max_weight_error = std::max(o.max_weight_error, std::abs(w - reference_weight(ref, config.eta, power, s, -1)));
+    double sum = 0;
+    for (int sp = 0; sp < n; ++sp) {
+      if (!ref.valid[size_t(sp)]) continue;
+      split(ref, sp, ls, cs);
+      prefixes(ls, false, config, lps);
+      prefixes(cs, true, config, cps);
+      sum += double(vcm_connection_weight(scene, ls.data(), lps.data(), sp, cs.data(), cps.data(), n - sp, config));
+    }
+    for (int j = 1; config.eta > 0 && j + 1 < n; ++j) {
+      if (!mergeable_ref(ref, j)) continue;
+      split(ref, j + 1, ls, unused);
+      split(ref, j, unused, cs);
+      prefixes(ls, false, config, lps);
+      prefixes(cs, true, config, cps);
+      const double wm = vcm_merge_weight(ls.data(), lps.data(), j, cs.data(), cps.data(), n - j, config);
+      o.max_weight_error = std::max(o.max_weight_error, std::abs(wm - reference_weight(ref, config.eta, power, -1, j)));
+      sum += wm;
+    }
+    o.max_sum_error = std::max(o.max_sum_error, std::abs(sum - 1.0));
+  });
   return o;
 }
 
