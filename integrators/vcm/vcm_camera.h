@@ -17,6 +17,15 @@ namespace dp::integrators {
 
 struct VcmCameraCounters {
   int64_t camera_vertices = 0, connections = 0, occluded = 0, merge_queries = 0, merges = 0, nan_dropped = 0;
+  VcmCameraCounters& operator+=(const VcmCameraCounters& o) {
+    camera_vertices += o.camera_vertices;
+    connections += o.connections;
+    occluded += o.occluded;
+    merge_queries += o.merge_queries;
+    merges += o.merges;
+    nan_dropped += o.nan_dropped;
+    return *this;
+  }
 };
 
 struct VcmCameraScratch {

@@ -115,19 +115,8 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
     for (const LightChunk& c : light.chunks)
       for (const Splat& s : c.splats) iter[size_t(s.pixel)] += s.value.cast<double>();
     for (size_t i = 0; i < total.size(); ++i) total[i] += iter[i];
-    for (const VcmCameraCounters& c : tile_counters) {
-      totals.camera.camera_vertices += c.camera_vertices;
-      totals.camera.connections += c.connections;
-      totals.camera.occluded += c.occluded;
-      totals.camera.merge_queries += c.merge_queries;
-      totals.camera.merges += c.merges;
-      totals.camera.nan_dropped += c.nan_dropped;
-    }
-    totals.light.light_vertices += lc.light_vertices;
-    totals.light.connections += lc.connections;
-    totals.light.occluded += lc.occluded;
-    totals.light.splats += lc.splats;
-    totals.light.nan_dropped += lc.nan_dropped;
+    for (const VcmCameraCounters& c : tile_counters) totals.camera += c;
+    totals.light += lc;
     totals.photons += m_settings.merges() ? int64_t(light.photon_pos.size()) : 0;
     radius = it.radius;
     ++done;

@@ -120,11 +120,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
       stop);
   for (const LightChunk& c : out.chunks) {
     if (!c.done) return false;
-    counters.light_vertices += c.counters.light_vertices;
-    counters.connections += c.counters.connections;
-    counters.occluded += c.counters.occluded;
-    counters.splats += c.counters.splats;
-    counters.nan_dropped += c.counters.nan_dropped;
+    counters += c.counters;
   }
   return true;
 }

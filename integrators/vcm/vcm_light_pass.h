@@ -28,6 +28,14 @@ struct VcmPhoton {
 
 struct VcmLightCounters {
   int64_t light_vertices = 0, connections = 0, occluded = 0, splats = 0, nan_dropped = 0;
+  VcmLightCounters& operator+=(const VcmLightCounters& o) {
+    light_vertices += o.light_vertices;
+    connections += o.connections;
+    occluded += o.occluded;
+    splats += o.splats;
+    nan_dropped += o.nan_dropped;
+    return *this;
+  }
 };
 
 // The light paths of one chunk (kLightChunk consecutive paths), reused across iterations
