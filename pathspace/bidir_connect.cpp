@@ -26,7 +26,7 @@ bool blocked(const scene::Scene& scene, const BidirVertex& a, const BidirVertex&
 }  // namespace
 
 bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
-             const MisConfig& config, Connection& out) {
+             const MisConfig& config, Connection& out, bool test_visibility) {
   out = Connection{};
   const BidirVertex& z = camera[t - 1];
   if (s == 0) {
@@ -57,7 +57,7 @@ bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const B
     }
   }
   if (is_black(out.value)) return false;
-  if (s > 0) {
+  if (s > 0 && test_visibility) {
     out.tested = true;
     out.occluded = blocked(scene, light[s - 1], z);
     if (out.occluded) return false;

@@ -2,6 +2,7 @@
 
 #include "core/warp.h"
 #include "pathspace/bidir_light.h"
+#include "pathspace/scatter.h"
 #include "scene/shape.h"
 
 namespace dp::pathspace {
@@ -46,13 +47,30 @@ void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb&
   path.push_back(v);
 }
 
+}  // namespace
+
+bool next_hit(const scene::Scene& scene, const scene::SurfaceHit& from, const Vec3& w, scene::SurfaceHit& out) {
+  const auto h = trace_from(scene, from, w);
+  if (h) out = *h;
+  return h.has_value();
+}
+
+Ray anchored_ray(const scene::Scene& scene, const Vec3& p, const Vec3& w) {
+  scene::SurfaceHit at;
+  at.p = p;
+  return continue_ray(scene, at, w);
+}
+
+namespace {
+
 // Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
 // carried by the ray. Densities from vertex positions (bidir_vertex.h).
 void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportMode mode,
                  const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path) {
   scene::SurfaceHit hit;
+  bool from_surface = false;  // the ray leaves the surface vertex `hit` (anchored at it)
   while (int(path.size()) < params.max_vertices) {
-    if (!scene.intersect(ray, hit)) {
+    if (!(from_surface ? next_hit(scene, hit, ray.d, hit) : scene.intersect(ray, hit))) {
       if (mode == scene::TransportMode::radiance && scene.environment()) add_environment_vertex(scene, ray.d, beta, path);
       break;
     }
@@ -85,13 +103,20 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     const Vec3 wo = hit.shading.to_world(bs->wo);
     if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) break;
     cur.delta = bs->is_delta();
+    cur.lobe = bs->lobe;
+    cur.u_lobe = u_lobe;
+    cur.pdf_out = bs->pdf;
     beta *= bs->weight;
+    float q = 1.0f;
     if (int(path.size()) - 1 >= params.rr_depth) {  // segments so far
-      const float q = std::min(0.95f, max_component(beta));
+      q = std::min(0.95f, max_component(beta));
       if (!(rng.uniform() < q)) break;
       beta /= q;
     }
-    ray = scene.spawn_ray(hit, wo);
+    cur.rr_out = q;
+    cur.weight_out = bs->weight / q;
+    ray.d = wo;
+    from_surface = true;
   }
 }
 
@@ -125,6 +150,8 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
   out.push_back(z0);
   if (params.max_vertices < 2) return;
   const Ray ray = cam.generate_ray(raster);
+  out[0].pdf_out = cam.pdf_direction(ray.d);
+  out[0].weight_out = Rgb::Ones();
   // We / p = 1 for a camera ray of its own pixel (bidir_vertex.h); the MIS density is
   // the whole-image direction density.
   random_walk(scene, ray, Rgb::Ones(), scene::TransportMode::radiance, params, rng, out);
@@ -150,7 +177,7 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
     y0.sp.shading = Frame::from_normal(ps.n);
     y0.sp.uv = ps.uv;
     w = y0.sp.shading.to_world(core::warp::square_to_cosine_hemisphere(u_dir));
-    ray = scene.spawn_ray(y0.sp, w);
+    ray = anchored_ray(scene, y0.sp.p, w);
   } else if (e->kind() == scene::EmitterKind::point || e->kind() == scene::EmitterKind::spot) {
     if (e->kind() == scene::EmitterKind::point) {
       y0.sp.p = static_cast<const scene::PointEmitter*>(e)->position();
@@ -190,6 +217,8 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
   if (!(pdf_ray > 0.0f) || params.max_vertices < 2) return;
   const Rgb beta = y0.beta * light_emit_cos(y0, w) / pdf_ray;
   if (is_black(beta)) return;
+  out[0].pdf_out = pdf_ray;
+  out[0].weight_out = light_emit_cos(y0, w) / pdf_ray;
   random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
 }
 

@@ -26,6 +26,15 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
 void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
                    std::vector<BidirVertex>& out);
 
+// Rays between subpath vertices leave from the vertex itself (pathspace/scatter.h,
+// trace_from: not Scene::spawn_ray's origin pushed along the normal), so consecutive
+// vertices lie on the sampled directions and the densities, cosines and shift Jacobians
+// evaluated from positions agree with the sampled ones to float round-off.
+// The first hit along w from surface vertex `from` (into `out`); false on a miss.
+bool next_hit(const scene::Scene& scene, const scene::SurfaceHit& from, const Vec3& w, scene::SurfaceHit& out);
+// A ray from point p (a light's surface point) along w, anchored at p.
+Ray anchored_ray(const scene::Scene& scene, const Vec3& p, const Vec3& w);
+
 // Re-derives wi, pdf_fwd and pdf_rev of every vertex of a given chain from the vertex
 // positions, as the walk in `mode` from path[0] (the pinhole, or a light endpoint) would
 // have set them; `delta` flags are kept (Dirac lobes give 0 densities). Tests use it to

@@ -49,6 +49,15 @@ struct BidirVertex {
   float pdf_fwd = 0, pdf_rev = 0;
   BidirKind kind = BidirKind::surface;
   bool delta = false;  // the walk left this vertex through a Dirac lobe
+  // How the walk left this vertex (for shifts that replay it, gradients/bidir_shift.h):
+  // the sampled BSDF lobe and lobe-selection number, the density of the sampled
+  // direction as drawn (solid angle; a Dirac lobe's discrete probability; a light
+  // endpoint's emission-direction density, planar at infinity), the Russian-roulette
+  // survival probability applied, and the factor beta grew by to the next vertex
+  // (f |cos| / pdf / rr). Zero / one at the last vertex.
+  uint32_t lobe = 0;
+  float u_lobe = 0, pdf_out = 0, rr_out = 1;
+  Rgb weight_out = Rgb::Zero();
 
   bool on_surface() const {
     return kind == BidirKind::surface || (kind == BidirKind::light && emitter->kind() == scene::EmitterKind::area);
