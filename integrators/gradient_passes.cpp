@@ -1,0 +1,68 @@
+#include "integrators/gradient_passes.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/timer.h"
+
+namespace dp::integrators {
+
+GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options, const std::string& label,
+                                      const GradientTileFunction& fn) {
+  const int threads = resolve_threads(options);
+  std::vector<gradients::GradientBuffers> buffers(size_t(threads), gradients::GradientBuffers(w, h));
+  GradientPasses out;
+  out.total = gradients::GradientBuffers(w, h);
+  auto commit = [&](bool complete) {
+    for (auto& b : buffers) {
+      if (complete) out.total.merge(b);
+      b.clear();
+    }
+    out.kept += complete ? 1 : 0;
+  };
+  auto tile_fn = [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
+    fn(tile, spp, rng, thread, buffers[size_t(thread)]);
+  };
+  core::Timer timer;
+  RenderOptions pass_opt = options;
+  pass_opt.time_budget = 0;
+  if (options.time_budget > 0) {
+    pass_opt.spp = 1;
+    pass_opt.quiet = true;
+    do {
+      pass_opt.seed = core::mix64(options.seed * 0x9e3779b97f4a7c15ull + uint64_t(out.passes));
+      const ScheduleResult sched = run_tiles(w, h, pass_opt, label, tile_fn);
+      ++out.passes;
+      commit(!sched.partial);
+      if (sched.partial) out.partial = true;
+    } while (!out.partial && timer.seconds() < options.time_budget && !(options.stop && options.stop->load()));
+  } else {
+    // Progressive passes (tile_scheduler.h); only complete ones are kept.
+    const ScheduleResult sched =
+        run_tiles(w, h, pass_opt, label, tile_fn, [&](int64_t, bool complete) { commit(complete); });
+    out.passes = sched.passes;
+    out.partial = sched.partial;
+  }
+  // Ctrl-C between two passes of a --time render stops it early too.
+  out.partial |= options.stop && options.stop->load();
+  out.render_seconds = timer.seconds();
+  return out;
+}
+
+void GradientPasses::fill(RenderResult& result) const {
+  const int w = total.width(), h = total.height();
+  int64_t lo = w > 0 && h > 0 ? total.samples(0, 0) : 0, hi = lo;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      lo = std::min(lo, total.samples(x, y));
+      hi = std::max(hi, total.samples(x, y));
+    }
+  result.min_spp = lo;
+  result.max_spp = hi;
+  result.partial = partial;
+  result.info["passes"] = passes;
+  result.info["passes_kept"] = kept;
+  result.info["render_seconds"] = render_seconds;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,34 @@
+// Whole-pass driver of the gradient-domain Monte Carlo integrators (G-PT, G-BDPT): the
+// symmetric pair estimates need the same sample count in both pixels of a pair, so only
+// complete passes are kept. Each thread owns a full-image gradients::GradientBuffers
+// (pairs and light-tracing splats cross tile borders); a complete pass is merged into the
+// total, an interrupted one (Ctrl-C) is dropped, so a partial render is the whole image at
+// the samples of its complete passes. A time budget runs 1-spp passes until it is used up.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "gradients/gradient_buffers.h"
+#include "integrators/tile_scheduler.h"
+
+namespace dp::integrators {
+
+struct GradientPasses {
+  gradients::GradientBuffers total;
+  int64_t passes = 0, kept = 0;
+  bool partial = false;
+  double render_seconds = 0;
+  // min/max spp, partial, info passes / passes_kept / render_seconds into `result`.
+  void fill(RenderResult& result) const;
+};
+
+// fn(tile, spp, rng, thread, buffers): render `spp` samples per pixel of the tile into the
+// thread's buffers.
+using GradientTileFunction =
+    std::function<void(const Tile& tile, int spp, core::Rng& rng, int thread, gradients::GradientBuffers& buf)>;
+
+GradientPasses render_gradient_passes(int width, int height, const RenderOptions& options, const std::string& label,
+                                      const GradientTileFunction& fn);
+
+}  // namespace dp::integrators
