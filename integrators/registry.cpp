@@ -5,6 +5,7 @@
 #include "integrators/integrator.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/gdmlt/gdmlt_integrator.h"
+#include "integrators/gbdpt/gbdpt_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
@@ -30,6 +31,7 @@ const std::vector<Entry>& registry() {
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
+      {"gbdpt", make<GbdptIntegrator>, "gradient-domain bidirectional path tracing (Manzi et al. 2015), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},
   };

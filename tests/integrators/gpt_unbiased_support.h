@@ -104,7 +104,7 @@ inline Blocks stats(const scene::Scene& s, const std::string& integrator, int sp
     const auto res = in->render(s, opt);
     // PT: differences of the image (all in `direct`); G-PT: its gradient layers plus the
     // differences of its direct layer.
-    if (integrator == "gpt")
+    if (integrator == "gpt" || integrator == "gbdpt")
       add_run(out, layer(res, "direct"), &layer(res, "dx"), &layer(res, "dy"), layer(res, "recon_l2"));
     else
       add_run(out, res.layers[0].image, nullptr, nullptr, res.layers[0].image);
@@ -122,31 +122,28 @@ inline integrators::GptSettings gpt_settings(const std::vector<std::pair<std::st
   return g;
 }
 
-// The layers of one G-PT render that the tests use.
+// The layers of one gradient-domain render (G-PT, G-BDPT) that the tests use.
 struct GptFrame {
   core::Image dx, dy, direct, l2;
 };
 
-// One G-PT render straight through GptTracer (the per-sample physics of `--integrator
-// gpt`) with explicit GptSettings, so a test can set GptSettings::faults, which no scene
-// key or --set reaches: `spp` samples in every pixel from the pixel's own random stream
-// (seed, pixel), one thread; the integrator's per-pixel normalisation (GradientBuffers)
-// and screened Poisson L2 solve with the direct layer added back (Lehtinen 2013, Eq. 8;
-// Kettunen 2015, Sec. 6; as gpt_integrator.cpp).
-inline GptFrame render_gpt_tracer(const scene::Scene& s, const integrators::GptSettings& settings, int spp,
-                                  uint64_t seed, int max_depth) {
+// One gradient-domain render straight through a tracer (the per-sample physics of an
+// integrator) with explicit settings, so a test can set its deliberate defects, which no
+// scene key or --set reaches: `spp` samples in every pixel from the pixel's own random
+// stream (seed, pixel), one thread, each by sample(x, y, rng, buffers); the integrators'
+// per-pixel normalisation (GradientBuffers) and screened Poisson L2 solve with the direct
+// layer added back (Lehtinen 2013, Eq. 8; Kettunen 2015, Sec. 6; as gpt_integrator.cpp).
+template <class SampleFn>
+GptFrame render_frame(const scene::Scene& s, int spp, uint64_t seed, float alpha, SampleFn&& sample) {
   const int w = s.camera().width(), h = s.camera().height();
-  const integrators::GptTracer tracer(s, settings, max_depth);
   gradients::GradientBuffers buf(w, h);
-  integrators::GptCounters counters;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       core::Rng rng(seed, uint64_t(y) * uint64_t(w) + uint64_t(x));
-      pathspace::IndependentStream stream(rng);
-      for (int i = 0; i < spp; ++i) tracer.sample(x, y, stream, buf, counters);
+      for (int i = 0; i < spp; ++i) sample(x, y, rng, buf);
     }
   GptFrame f{buf.dx(), buf.dy(), buf.direct(), {}};
-  const reconstruct::Problem problem = reconstruct::make_grid_problem(buf.primal(), f.dx, f.dy, settings.alpha);
+  const reconstruct::Problem problem = reconstruct::make_grid_problem(buf.primal(), f.dx, f.dy, alpha);
   reconstruct::SolveOptions sopt;
   sopt.threads = 1;
   f.l2 = reconstruct::solve_l2(problem, sopt).image;
@@ -154,14 +151,25 @@ inline GptFrame render_gpt_tracer(const scene::Scene& s, const integrators::GptS
   return f;
 }
 
-// stats() of kRuns renders through render_gpt_tracer (seeds seed0 + run), two runs at a
-// time (they are independent).
-inline Blocks tracer_stats(const scene::Scene& s, const integrators::GptSettings& settings, int spp, uint64_t seed0,
-                           int max_depth = 5) {
+// One G-PT render through GptTracer (render_frame).
+inline GptFrame render_gpt_tracer(const scene::Scene& s, const integrators::GptSettings& settings, int spp,
+                                  uint64_t seed, int max_depth) {
+  const integrators::GptTracer tracer(s, settings, max_depth);
+  integrators::GptCounters counters;
+  return render_frame(s, spp, seed, settings.alpha,
+                      [&](int x, int y, core::Rng& rng, gradients::GradientBuffers& buf) {
+                        pathspace::IndependentStream stream(rng);
+                        tracer.sample(x, y, stream, buf, counters);
+                      });
+}
+
+// Blocks of kRuns renders render(seed0 + run) -> GptFrame, two runs at a time (they are
+// independent).
+template <class RenderFn>
+Blocks frame_stats(uint64_t seed0, RenderFn&& render) {
   std::vector<GptFrame> frames(static_cast<size_t>(kRuns));
   auto run = [&](int first) {
-    for (int r = first; r < kRuns; r += 2)
-      frames[size_t(r)] = render_gpt_tracer(s, settings, spp, seed0 + uint64_t(r), max_depth);
+    for (int r = first; r < kRuns; r += 2) frames[size_t(r)] = render(seed0 + uint64_t(r));
   };
   std::thread other(run, 1);
   run(0);
@@ -169,6 +177,12 @@ inline Blocks tracer_stats(const scene::Scene& s, const integrators::GptSettings
   Blocks out;
   for (const GptFrame& f : frames) add_run(out, f.direct, &f.dx, &f.dy, f.l2);
   return out;
+}
+
+// stats() of kRuns renders through render_gpt_tracer (seeds seed0 + run).
+inline Blocks tracer_stats(const scene::Scene& s, const integrators::GptSettings& settings, int spp, uint64_t seed0,
+                           int max_depth = 5) {
+  return frame_stats(seed0, [&](uint64_t seed) { return render_gpt_tracer(s, settings, spp, seed, max_depth); });
 }
 
 // Welch's t-test of mean(a) = mean(b) at 1% significance, Sidak-corrected over `tests`:

@@ -15,6 +15,7 @@
 #include "pathspace/measure.h"
 #include "scene/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
+#include "tests/support/furnace_bound.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;
@@ -32,22 +33,9 @@ const core::Image& layer(const integrators::RenderResult& r, const std::string& 
 }
 }  // namespace
 
-// Round-off bound of one sampled gradient in the furnace (unit sphere, R = 1, camera
-// inside). Every concrete path has f/p = albedo^k Le; the offset's value f(Tx)|T'|/p(x)
-// differs from it only through float geometry:
-//  * a chord a -> b of the sphere has cos_a cos_b / d^2 = 1/(4R^2) exactly; with float
-//    points off the sphere by dr <= (sqrt(3)/2) u |p| (u = 2^-24) the product becomes
-//    (1 - ((|a|^2 - |b|^2)/d^2)^2)/(4|a||b|): the radial rounding cancels to first order
-//    inside every chord that is evaluated from positions (offset reconnection, NEE);
-//  * the base's cosine at x_k comes from the SAMPLED direction, and x_{k+1} lies on that
-//    ray only up to the rounding of the hit, d_perp <= ~4u (1 + |p|) (hit distance,
-//    point, re-projection onto the sphere, each rounded once): a first-order relative
-//    error d_perp / (d cos) = 2R d_perp / d^2 -- the dominant term;
-//  * float evaluation of BSDFs, cosines, normalizations: a few dozen roundings, <= 64u.
-// Hence |f(Tx)|T'| - f(x)| / f(x) <= eps(d_min) = 64u + 2R d_perp / d_min^2 + (4R dr/d_min^2)^2
-// with d_min the shortest segment of the base or any offset, and as the symmetric MIS
-// weights are <= 1, the gradient of every pixel pair of one sample satisfies
-// |grad| <= eps(d_min) * S, S = sum over the sample's concrete paths of f(x)/p(x).
+// The round-off bound of one sampled gradient in the furnace: tests/support/furnace_bound.h.
+// As the symmetric MIS weights are <= 1, the gradient of every pixel pair of one sample
+// satisfies |grad| <= eps(d_min) * S, S = sum over the sample's concrete paths of f(x)/p(x).
 // (Before the vertex-anchored rays of pathspace/scatter.h the ray origin was pushed by
 // ~2e-5 along the normal; that adds 2e-5 sin^2/(2R cos^2) relative per bounce -- well
 // above this bound for all but near-normal bounces.)
@@ -61,8 +49,6 @@ TEST_CASE("G-PT furnace: every sampled gradient is zero within its round-off bou
   pathspace::Path base;
   gradients::ShiftResult shifted;
   integrators::GptCounters counters;
-  constexpr double u = 0x1p-24, R = 1.0;
-  const double d_perp = 4.0 * u * (1.0 + 1.0), dr = 0.8660254 * u;
   double worst_ratio = 0, worst_rel = 0, worst_rel_dmin = 0, sum_abs = 0;
   int64_t pairs = 0, exactly_zero = 0;
   std::vector<double> ratios;
@@ -94,8 +80,7 @@ TEST_CASE("G-PT furnace: every sampled gradient is zero within its round-off bou
           S += double(pathspace::nee_estimate(base, k).maxCoeff());
           if (k >= 2) S += double(pathspace::emission_estimate(base, k).maxCoeff());
         }
-        const double q = 4.0 * R * dr / (d_min * d_min);
-        const double eps = 64.0 * u + 2.0 * R * d_perp / (d_min * d_min) + q * q;
+        const double eps = test::furnace_roundoff_bound(d_min);
         // The same sample through the integrator's tracer (replayed primary samples).
         stream.rewind();
         gradients::GradientBuffers buf(res, res);

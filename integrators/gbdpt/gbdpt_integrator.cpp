@@ -1,0 +1,41 @@
+#include "integrators/gbdpt/gbdpt_integrator.h"
+
+#include "core/timer.h"
+#include "integrators/gbdpt/gbdpt_tracer.h"
+#include "integrators/gradient_output.h"
+#include "integrators/gradient_passes.h"
+
+namespace dp::integrators {
+
+RenderResult GbdptIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
+  const auto& cam = scene.camera();
+  const int w = cam.width(), h = cam.height();
+  const int threads = resolve_threads(options);
+  std::vector<core::Stats> thread_stats(static_cast<size_t>(threads));
+  std::vector<GbdptScratch> scratch(static_cast<size_t>(threads));
+  const GbdptTracer tracer(scene, m_settings, options.max_depth);
+  core::Timer timer;
+  const GradientPasses passes = render_gradient_passes(
+      w, h, options, "gbdpt",
+      [&](const Tile& tile, int spp, core::Rng& rng, int thread, gradients::GradientBuffers& buf) {
+        GbdptCounters counters;
+        GbdptScratch& sc = scratch[size_t(thread)];
+        for (int y = tile.y0; y < tile.y1; ++y)
+          for (int x = tile.x0; x < tile.x1; ++x)
+            for (int s = 0; s < spp; ++s) tracer.sample(x, y, rng, sc, buf, counters);
+        counters.flush(thread_stats[size_t(thread)]);
+      });
+
+  RenderResult result;
+  for (const auto& s : thread_stats) result.stats.merge(s);
+  // Screened Poisson reconstruction without the direct layer (Manzi 2015, Sec. 5, as G-PT).
+  const gradients::GradientBuffers& total = passes.total;
+  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), m_settings.alpha,
+                      m_settings.reconstruction, threads, result);
+  result.wall_seconds = timer.seconds();
+  passes.fill(result);
+  result.info["settings"] = m_json;
+  return result;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,159 @@
+#include "integrators/gbdpt/gbdpt_tracer.h"
+
+#include <string>
+
+#include "pathspace/bidir_connect.h"
+#include "pathspace/bidir_subpath.h"
+
+namespace dp::integrators {
+
+using gradients::ShiftStatus;
+
+void GbdptCounters::flush(core::Stats& stats) const {
+  stats.add("gbdpt.samples", samples);
+  stats.add("gbdpt.nan_dropped", nan_dropped);
+  stats.add("gbdpt.connections", connections);
+  stats.add("gbdpt.connections_occluded", occluded);
+  stats.add("gbdpt.direct_paths", direct);
+  stats.add("gbdpt.shift.camera.attempted", camera_shifts);
+  stats.add("gbdpt.shift.camera.rejoined", camera_rejoined);
+  stats.add("gbdpt.shift.light_tracing.attempted", light_shifts);
+  stats.add("gbdpt.shift.light_tracing.succeeded", light_shifted);
+  for (int i = 1; i < gradients::kShiftStatusCount; ++i) {
+    const std::string cause = gradients::to_string(ShiftStatus(i));
+    stats.add("gbdpt.shift.camera.fail." + cause, camera_fail[size_t(i)]);
+    stats.add("gbdpt.shift.light_tracing.fail." + cause, light_fail[size_t(i)]);
+  }
+  stats.add("gbdpt.pairs.shifted", pairs_shifted);
+  stats.add("gbdpt.pairs.fallback", pairs_fallback);
+  stats.add("gbdpt.pairs.outside_image", outside_image);
+  // The manifold walk of a specular chain after b (Manzi 2015) is not implemented: such
+  // shifts fail as not_invertible (T_0 fallback) and no walk is ever run.
+  stats.add("gbdpt.manifold.walks", 0);
+}
+
+GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& settings, int max_depth)
+    : m_scene(scene), m_settings(settings), m_max_depth(max_depth) {
+  m_balance.heuristic = pathspace::MisHeuristic::balance;
+  m_shift.fault = settings.faults.jacobian;
+}
+
+namespace {
+constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+}
+
+void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradients::GradientBuffers& buf,
+                         GbdptCounters& counters) const {
+  ++counters.samples;
+  const int w = buf.width(), h = buf.height();
+  const Vec2 raster(float(px) + rng.uniform(), float(py) + rng.uniform());
+  sc.camera_raster = raster;
+  const pathspace::SubpathParams cam_params{m_max_depth + 1, m_settings.rr_depth};
+  const pathspace::SubpathParams light_params{m_max_depth, m_settings.rr_depth};
+  pathspace::camera_subpath(m_scene, raster, cam_params, rng, sc.camera);
+  pathspace::light_subpath(m_scene, light_params, rng, sc.light);
+  sc.terms.clear();
+  sc.adds.clear();
+  const int nc = int(sc.camera.size()), nl = int(sc.light.size());
+  for (int t = 1; t <= nc; ++t)
+    for (int s = 0; s <= nl; ++s) {
+      if (s + t < 2 || s + t - 1 > m_max_depth) continue;
+      pathspace::Connection c;
+      const bool ok = pathspace::connect(m_scene, sc.light.data(), s, sc.camera.data(), t, m_settings.mis, c);
+      counters.connections += c.tested;
+      counters.occluded += c.occluded;
+      if (!ok) continue;
+      GbdptTerm term{s, t, px, py, c.raster, c.value, 0.0};
+      if (t == 1) {
+        term.px = std::min(int(c.raster.x()), w - 1);
+        term.py = std::min(int(c.raster.y()), h - 1);
+      }
+      const bool direct = s + t == 2;
+      sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * c.weight).cast<double>()});
+      if (direct) {
+        ++counters.direct;
+        continue;
+      }
+      term.w_bal = m_settings.mis.heuristic == pathspace::MisHeuristic::balance
+                       ? double(c.weight)
+                       : double(pathspace::mis_weight(m_scene, sc.light.data(), s, sc.camera.data(), t, m_balance));
+      sc.terms.push_back(term);
+    }
+  if (!sc.terms.empty())
+    for (int nb = 0; nb < 4; ++nb) offsets(nb, sc, w, h, counters);
+  for (const auto& a : sc.adds)
+    if (!a.v.isFinite().all()) {
+      ++counters.nan_dropped;  // the whole sample is dropped, never splatted
+      buf.add_samples(px, py, 1);
+      return;
+    }
+  for (const auto& a : sc.adds) {
+    if (a.layer == 0) buf.add_primal(a.x, a.y, a.v);
+    else if (a.layer == 1) buf.add_direct(a.x, a.y, a.v);
+    else if (a.layer == 2) buf.add_dx(a.x, a.y, a.v);
+    else buf.add_dy(a.x, a.y, a.v);
+  }
+  buf.add_samples(px, py, 1);
+}
+
+void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters& counters) const {
+  const Vec2 offset(float(kDx[nb]), float(kDy[nb]));
+  bool camera_shifted = false;
+  for (const GbdptTerm& term : sc.terms) {
+    const int qx = term.px + kDx[nb], qy = term.py + kDy[nb];
+    if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
+      ++counters.outside_image;
+      continue;
+    }
+    Rgb off = Rgb::Zero();
+    double w_off = 0.0, ratio = 1.0;
+    if (term.t >= 2) {
+      if (!camera_shifted) {
+        gradients::shift_camera_subpath(m_scene, sc.camera, sc.camera_raster, offset, m_shift, sc.shift);
+        camera_shifted = true;
+        ++counters.camera_shifts;
+        counters.camera_rejoined += sc.shift.rejoined;
+        if (sc.shift.status != ShiftStatus::ok) ++counters.camera_fail[size_t(sc.shift.status)];
+      }
+      const gradients::StrategyOffset so = gradients::camera_strategy_offset(sc.shift, sc.camera, term.t);
+      if (so.exists) {
+        pathspace::Connection c;
+        if (pathspace::connect(m_scene, sc.light.data(), term.s, sc.shift.path.data(), term.t, m_balance, c,
+                               so.test_visibility)) {
+          off = c.value;
+          w_off = double(c.weight);
+          ratio = so.mis_ratio;
+        }
+        counters.connections += c.tested;
+        counters.occluded += c.occluded;
+      }
+    } else {
+      ++counters.light_shifts;
+      if (gradients::shift_light_tracing(m_scene, sc.light.data(), term.s, term.raster, offset, m_shift, sc.lt)) {
+        ++counters.light_shifted;
+        off = sc.lt.value;
+        ratio = sc.lt.mis_ratio;
+        w_off = double(pathspace::mis_weight(m_scene, sc.lt.light.data(), term.s, sc.camera.data(), 1, m_balance));
+      } else {
+        ++counters.light_fail[size_t(sc.lt.status)];
+      }
+    }
+    Rgbd g;
+    const Rgbd base = term.value.cast<double>();
+    if (!is_black(off) && w_off > 0.0 && ratio > 0.0) {
+      const double wgt = m_settings.faults.mis_without_offset ? term.w_bal : 1.0 / (1.0 / term.w_bal + ratio / w_off);
+      g = wgt * (off.cast<double>() - base);
+      ++counters.pairs_shifted;
+    } else {
+      g = -term.w_bal * base;  // T_0 fallback
+      ++counters.pairs_fallback;
+    }
+    // g estimates I_j - I_i; the buffers hold forward differences.
+    if (kDx[nb] == 1) sc.adds.push_back({term.px, term.py, 2, g});
+    else if (kDx[nb] == -1) sc.adds.push_back({qx, qy, 2, -g});
+    else if (kDy[nb] == 1) sc.adds.push_back({term.px, term.py, 3, g});
+    else sc.adds.push_back({qx, qy, 3, -g});
+  }
+}
+
+}  // namespace dp::integrators
