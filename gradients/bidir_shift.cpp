@@ -189,6 +189,7 @@ StrategyOffset camera_strategy_offset(const CameraSubpathShift& shift, const std
   if (!shift.rejoined || (t - 1 > bst + 1 && base[size_t(bst + 1)].delta)) return o;
   o.exists = true;
   o.test_visibility = false;
+  o.same_reverse = t - 1 >= bst + 2;
   o.mis_ratio = shift.mis_ratio[size_t(t)];
   return o;
 }
@@ -217,8 +218,7 @@ bool shift_light_tracing(const scene::Scene& scene, const BidirVertex* light, in
   if (blocked(scene, y1, z)) return fail(ShiftStatus::occluded);
   out.light.assign(light, light + (s - 1));
   y1.beta = Rgb::Zero();
-  out.light.push_back(y1);
-  pathspace::recompute_densities(scene, out.light, scene::TransportMode::importance);
+  pathspace::append_vertex(scene, out.light, y1, scene::TransportMode::importance);
   const BidirVertex& y = out.light.back();  // wi re-derived: toward z
   // f(T x)|T'| / p(x) in area measure: the light prefix up to z over its sampling density,
   // z's factor toward y_1 with the area conversion at y_1, y_1's factor toward the camera,

@@ -58,6 +58,8 @@ void shift_camera_subpath(const scene::Scene& scene, const std::vector<pathspace
 struct StrategyOffset {
   bool exists = false;
   bool test_visibility = true;  // false: the connection segment is the base's own (shared)
+  bool same_reverse = false;    // x_{t-1}, x_{t-2} and the light side are the base's: so are
+                                // the connection's reverse densities (bidir_mis.h)
   double mis_ratio = 1;         // q_st(T x) |T'| / q_st(x) in the MIS densities of bidir_mis.h
 };
 StrategyOffset camera_strategy_offset(const CameraSubpathShift& shift,

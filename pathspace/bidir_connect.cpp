@@ -26,7 +26,7 @@ bool blocked(const scene::Scene& scene, const BidirVertex& a, const BidirVertex&
 }  // namespace
 
 bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
-             const MisConfig& config, Connection& out, bool test_visibility) {
+             const MisConfig& config, Connection& out, bool test_visibility, const ReversePdfs* reverse) {
   out = Connection{};
   const BidirVertex& z = camera[t - 1];
   if (s == 0) {
@@ -62,7 +62,9 @@ bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const B
     out.occluded = blocked(scene, light[s - 1], z);
     if (out.occluded) return false;
   }
-  out.weight = config.unweighted ? 1.0f : mis_weight(scene, light, s, camera, t, config);
+  out.weight = config.unweighted ? 1.0f
+               : reverse     ? mis_weight(light, s, camera, t, config, *reverse)
+                             : mis_weight(scene, light, s, camera, t, config);
   return out.weight > 0.0f;
 }
 

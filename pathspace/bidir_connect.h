@@ -25,7 +25,9 @@ struct Connection {
 // Fills `out` for strategy (s, t); returns true if value * weight may be non-zero.
 // Needs s + t >= 2, t >= 1, s <= light size, t <= camera size. `test_visibility` false:
 // the caller knows the connection segment is unoccluded (a shifted path sharing it).
+// `reverse`: the connection's reverse densities if already known (bidir_mis.h).
 bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
-             const MisConfig& config, Connection& out, bool test_visibility = true);
+             const MisConfig& config, Connection& out, bool test_visibility = true,
+             const ReversePdfs* reverse = nullptr);
 
 }  // namespace dp::pathspace

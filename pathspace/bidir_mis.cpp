@@ -43,8 +43,13 @@ ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex
 
 float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
                  const MisConfig& config) {
-  const ReversePdfs reverse =
-      connection_reverse_pdfs(scene, light, s, camera, t, config.fault != BidirFault::reverse_pdf_without_cosine);
+  return mis_weight(light, s, camera, t, config,
+                    connection_reverse_pdfs(scene, light, s, camera, t,
+                                            config.fault != BidirFault::reverse_pdf_without_cosine));
+}
+
+float mis_weight(const BidirVertex* light, int s, const BidirVertex* camera, int t, const MisConfig& config,
+                 const ReversePdfs& reverse) {
   const float* z_rev = reverse.z;
   const float* y_rev = reverse.y;
   const bool power = config.heuristic == MisHeuristic::power;

@@ -52,5 +52,9 @@ ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex
 // For s = 0, camera[t-1] must lie on an area emitter.
 float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
                  const MisConfig& config);
+// The same with the connection's reverse densities given (computed once and shared by
+// several heuristics, or by a shifted path whose connection neighbourhood is the base's).
+float mis_weight(const BidirVertex* light, int s, const BidirVertex* camera, int t, const MisConfig& config,
+                 const ReversePdfs& reverse);
 
 }  // namespace dp::pathspace

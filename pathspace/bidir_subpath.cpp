@@ -122,6 +122,19 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
 
 }  // namespace
 
+void append_vertex(const scene::Scene& scene, std::vector<BidirVertex>& path, const BidirVertex& v,
+                   scene::TransportMode mode) {
+  path.push_back(v);
+  const size_t n = path.size() - 1;
+  BidirVertex& nv = path[n];
+  const BidirVertex& prev = path[n - 1];
+  if (prev.infinite()) nv.wi = prev.sp.ng;
+  else if (nv.infinite()) nv.wi = -nv.sp.ng;
+  else nv.wi = (prev.sp.p - nv.sp.p).normalized();
+  nv.pdf_fwd = nv.pdf_rev = 0.0f;
+  set_densities(scene, path.data(), n, nv, mode);
+}
+
 void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, scene::TransportMode mode) {
   if (path.empty()) return;
   BidirVertex& first = path[0];

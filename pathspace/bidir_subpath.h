@@ -40,5 +40,10 @@ Ray anchored_ray(const scene::Scene& scene, const Vec3& p, const Vec3& w);
 // have set them; `delta` flags are kept (Dirac lobes give 0 densities). Tests use it to
 // cut one full path into the subpaths of every strategy.
 void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, scene::TransportMode mode);
+// Appends v (position, surface data, delta flag set) to `path` with wi and pdf_fwd derived
+// from the positions, and the reverse density of its predecessor's predecessor, as the
+// walk would have set them (recompute_densities for one vertex).
+void append_vertex(const scene::Scene& scene, std::vector<BidirVertex>& path, const BidirVertex& v,
+                   scene::TransportMode mode);
 
 }  // namespace dp::pathspace

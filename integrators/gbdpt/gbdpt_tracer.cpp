@@ -35,6 +35,7 @@ void GbdptCounters::flush(core::Stats& stats) const {
 GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& settings, int max_depth)
     : m_scene(scene), m_settings(settings), m_max_depth(max_depth) {
   m_balance.heuristic = pathspace::MisHeuristic::balance;
+  m_unweighted.unweighted = true;
   m_shift.fault = settings.faults.jacobian;
 }
 
@@ -45,7 +46,7 @@ constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
 void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradients::GradientBuffers& buf,
                          GbdptCounters& counters) const {
   ++counters.samples;
-  const int w = buf.width(), h = buf.height();
+  const int w_img = buf.width(), h_img = buf.height();
   const Vec2 raster(float(px) + rng.uniform(), float(py) + rng.uniform());
   sc.camera_raster = raster;
   const pathspace::SubpathParams cam_params{m_max_depth + 1, m_settings.rr_depth};
@@ -58,29 +59,34 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
   for (int t = 1; t <= nc; ++t)
     for (int s = 0; s <= nl; ++s) {
       if (s + t < 2 || s + t - 1 > m_max_depth) continue;
+      // Value and visibility first; the reverse densities only for a non-zero value, once
+      // for both heuristics (primal and gradient weights) and the offsets that keep them.
       pathspace::Connection c;
-      const bool ok = pathspace::connect(m_scene, sc.light.data(), s, sc.camera.data(), t, m_settings.mis, c);
+      const bool ok = pathspace::connect(m_scene, sc.light.data(), s, sc.camera.data(), t, m_unweighted, c);
       counters.connections += c.tested;
       counters.occluded += c.occluded;
       if (!ok) continue;
-      GbdptTerm term{s, t, px, py, c.raster, c.value, 0.0};
+      GbdptTerm term{s, t, px, py, c.raster, c.value, 0.0, {}};
+      term.reverse = pathspace::connection_reverse_pdfs(m_scene, sc.light.data(), s, sc.camera.data(), t);
+      const float w = pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_settings.mis, term.reverse);
+      if (!(w > 0.0f)) continue;
       if (t == 1) {
-        term.px = std::min(int(c.raster.x()), w - 1);
-        term.py = std::min(int(c.raster.y()), h - 1);
+        term.px = std::min(int(c.raster.x()), w_img - 1);
+        term.py = std::min(int(c.raster.y()), h_img - 1);
       }
       const bool direct = s + t == 2;
-      sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * c.weight).cast<double>()});
+      sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
       if (direct) {
         ++counters.direct;
         continue;
       }
       term.w_bal = m_settings.mis.heuristic == pathspace::MisHeuristic::balance
-                       ? double(c.weight)
-                       : double(pathspace::mis_weight(m_scene, sc.light.data(), s, sc.camera.data(), t, m_balance));
+                       ? double(w)
+                       : double(pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_balance, term.reverse));
       sc.terms.push_back(term);
     }
   if (!sc.terms.empty())
-    for (int nb = 0; nb < 4; ++nb) offsets(nb, sc, w, h, counters);
+    for (int nb = 0; nb < 4; ++nb) offsets(nb, sc, w_img, h_img, counters);
   for (const auto& a : sc.adds)
     if (!a.v.isFinite().all()) {
       ++counters.nan_dropped;  // the whole sample is dropped, never splatted
@@ -119,7 +125,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
       if (so.exists) {
         pathspace::Connection c;
         if (pathspace::connect(m_scene, sc.light.data(), term.s, sc.shift.path.data(), term.t, m_balance, c,
-                               so.test_visibility)) {
+                               so.test_visibility, so.same_reverse ? &term.reverse : nullptr)) {
           off = c.value;
           w_off = double(c.weight);
           ratio = so.mis_ratio;

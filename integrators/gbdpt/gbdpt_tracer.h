@@ -25,6 +25,7 @@
 #include "gradients/bidir_shift.h"
 #include "gradients/gradient_buffers.h"
 #include "integrators/gbdpt/gbdpt_settings.h"
+#include "pathspace/bidir_mis.h"
 
 namespace dp::integrators {
 
@@ -44,6 +45,7 @@ struct GbdptTerm {
   Vec2 raster{0, 0};   // t = 1: the exact projection
   Rgb value = Rgb::Zero();  // f(x) / p_st(x)
   double w_bal = 0;         // balance-heuristic BDPT weight of (s, t) for x
+  pathspace::ReversePdfs reverse;  // the connection's reverse densities (shared by offsets that keep them)
 };
 
 // Per-thread scratch (no allocation per sample once warmed up).
@@ -72,7 +74,7 @@ class GbdptTracer {
   const scene::Scene& m_scene;
   GbdptSettings m_settings;
   int m_max_depth;
-  pathspace::MisConfig m_balance;
+  pathspace::MisConfig m_balance, m_unweighted;
   gradients::BidirShiftOptions m_shift;
 };
 
