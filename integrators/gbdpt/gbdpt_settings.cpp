@@ -19,6 +19,10 @@ GbdptSettings GbdptSettings::read(Settings& s) {
   g.alpha = float(s.get_double("alpha", double(g.alpha), "screened Poisson weight of the primal image (L1 and L2)"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
                                   "reconstruction shown as the RGB layer (both are written as layers)", {"l1", "l2"});
+  g.primal = s.get_string("primal", g.primal,
+                          "primal image: pairs (every shifted pair's estimates of both pixels, balance-weighted, "
+                          "as G-PT) or bdpt (the plain BDPT estimate with the `mis` heuristic, as Manzi et al. 2015)",
+                          {"pairs", "bdpt"});
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
   return g;

@@ -23,6 +23,7 @@ struct GbdptSettings {
   pathspace::MisConfig mis;  // heuristic of the primal (as BDPT); the gradients use the balance heuristic
   float alpha = 0.2f;        // screened Poisson weight of the primal
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
+  std::string primal = "pairs";       // pairs (both pixels' pair estimates, as G-PT) | bdpt
   GbdptFaults faults;                 // tests only (see GbdptFaults)
 
   static GbdptSettings read(Settings& s);

@@ -36,6 +36,7 @@ GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& setting
     : m_scene(scene), m_settings(settings), m_max_depth(max_depth) {
   m_balance.heuristic = pathspace::MisHeuristic::balance;
   m_unweighted.unweighted = true;
+  m_pair_primal = settings.primal == "pairs";
   m_shift.fault = settings.faults.jacobian;
 }
 
@@ -75,7 +76,7 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
         term.py = std::min(int(c.raster.y()), h_img - 1);
       }
       const bool direct = s + t == 2;
-      sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
+      if (direct || !m_pair_primal) sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
       if (direct) {
         ++counters.direct;
         continue;
@@ -107,8 +108,10 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
   bool camera_shifted = false;
   for (const GbdptTerm& term : sc.terms) {
     const int qx = term.px + kDx[nb], qy = term.py + kDy[nb];
+    const Rgbd base = term.value.cast<double>();
     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
-      ++counters.outside_image;
+      ++counters.outside_image;  // no pair: the base pixel keeps its own estimate
+      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w_bal * base});
       continue;
     }
     Rgb off = Rgb::Zero();
@@ -145,14 +148,18 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
       }
     }
     Rgbd g;
-    const Rgbd base = term.value.cast<double>();
     if (!is_black(off) && w_off > 0.0 && ratio > 0.0) {
       const double wgt = m_settings.faults.mis_without_offset ? term.w_bal : 1.0 / (1.0 / term.w_bal + ratio / w_off);
       g = wgt * (off.cast<double>() - base);
       ++counters.pairs_shifted;
+      if (m_pair_primal) {  // the pair's estimates of both pixels, a quarter per neighbour
+        sc.adds.push_back({term.px, term.py, 0, 0.25 * wgt * base});
+        sc.adds.push_back({qx, qy, 0, 0.25 * wgt * off.cast<double>()});
+      }
     } else {
       g = -term.w_bal * base;  // T_0 fallback
       ++counters.pairs_fallback;
+      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w_bal * base});
     }
     // g estimates I_j - I_i; the buffers hold forward differences.
     if (kDx[nb] == 1) sc.adds.push_back({term.px, term.py, 2, g});

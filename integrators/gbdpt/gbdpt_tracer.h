@@ -4,9 +4,13 @@
 // neighbours j the offset of every strategy's path under the G-BDPT shift
 // (gradients/bidir_shift.h): the camera subpath is shifted once per neighbour and serves
 // every camera strategy; a light-tracing path (t = 1) is shifted by its own primary ray.
-//  * primal_i += w_st f(x)/p_st(x) (BDPT, the `mis` heuristic); light tracing splats where
-//    x_1 projects. Paths of one segment (a light seen directly) go to `direct` only and are
-//    never shifted (ALGORITHMS.md).
+//  * primal (`primal=pairs`, default, as G-PT): each pair's estimates of both pixels,
+//    primal_i += 1/4 w f(x)/p_st(x), primal_j += 1/4 w f(T x)|T'|/p_st(x) per neighbour
+//    (the four pairs' weights w and the neighbours' ones sum to 1 for every path; a pair
+//    that is not formed leaves w_bal(x) f(x)/p_st(x) to pixel i); `primal=bdpt`: the BDPT
+//    estimate w_st f(x)/p_st(x) with the `mis` heuristic (Manzi 2015's primal). Light
+//    tracing's pixel is where x_1 projects. Paths of one segment (a light seen directly)
+//    go to `direct` only and are never shifted (ALGORITHMS.md).
 //  * gradient(i -> j) += w (f(T x)|T'| - f(x)) / p_st(x) with the balance heuristic over
 //    both pixels' strategies, w = p_st(x) / sum_r (p_r(x) + p_r(T x)|T'|) (Manzi 2015,
 //    Eq. 6; computed as 1 / (1/w_bal(x) + R / w_bal(T x)), R = p_st(T x)|T'| / p_st(x)).
@@ -75,6 +79,7 @@ class GbdptTracer {
   GbdptSettings m_settings;
   int m_max_depth;
   pathspace::MisConfig m_balance, m_unweighted;
+  bool m_pair_primal = true;
   gradients::BidirShiftOptions m_shift;
 };
 

@@ -1,4 +1,4 @@
-// Unbiasedness of G-BDPT against the reference PT on the small lit box with a glossy
+// Unbiasedness of G-BDPT against the reference PT (and BDPT) on the small lit box with a glossy
 // conductor sphere and a glass sphere (Dirac copies through glass, reconnections at the
 // glossy and diffuse vertices, light tracing): block sums of the dx / dy layers equal
 // block sums of differences of PT's pixel expectations, and the mean of the L2
@@ -18,10 +18,10 @@ using namespace dp;
 using namespace dp::test;
 
 namespace {
-void print(const char* what, const Verdict& v, const Blocks& g, const Blocks& p) {
-  std::printf("gbdpt unbiasedness [%s]: gradients worst |t|/crit %.2f (|t| %.2f, block %d), L2 mean %.5f vs PT "
+void print(const char* what, const Verdict& v, const Blocks& g, const Blocks& p, const char* ref = "PT") {
+  std::printf("gbdpt unbiasedness [%s]: gradients worst |t|/crit %.2f (|t| %.2f, block %d), L2 mean %.5f vs %s "
               "%.5f (z %.2f, |t|/crit %.2f)%s\n",
-              what, v.grad, v.zmax, v.worst_block, moments(g.mean).mean, moments(p.mean).mean, v.zl2, v.l2,
+              what, v.grad, v.zmax, v.worst_block, moments(g.mean).mean, ref, moments(p.mean).mean, v.zl2, v.l2,
               v.rejects() ? " -> rejected" : "");
 }
 
@@ -59,6 +59,11 @@ TEST_CASE("G-BDPT gradients and L2 mean agree with PT in expectation; Jacobian a
   const Verdict v = verdict(g, p);
   print("integrator", v, g, p);
   CHECK_FALSE(v.rejects());
+  // ... and against BDPT (the primal's own estimator family: the same strategies).
+  const Blocks b = stats(*s, "bdpt", 64, 3000);
+  const Verdict vb = verdict(g, b);
+  print("integrator", vb, g, b, "BDPT");
+  CHECK_FALSE(vb.rejects());
   // ... and its tracer with explicit settings, the harness the defects below run through.
   integrators::Settings raw;
   const integrators::GbdptSettings settings = integrators::GbdptSettings::read(raw);
