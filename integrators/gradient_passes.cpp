@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/timer.h"
+#include "integrators/gradient_output.h"
 
 namespace dp::integrators {
 
@@ -47,6 +48,19 @@ GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options
   out.partial |= options.stop && options.stop->load();
   out.render_seconds = timer.seconds();
   return out;
+}
+
+RenderResult gradient_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats, float alpha,
+                             const std::string& reconstruction, int threads, const core::Json& settings) {
+  RenderResult result;
+  for (const auto& s : thread_stats) result.stats.merge(s);
+  // Screened Poisson reconstruction without the direct layer (Lehtinen 2013, Eq. 8;
+  // Kettunen 2015, Sec. 6; Manzi 2015, Sec. 5), which is added back afterwards.
+  const gradients::GradientBuffers& total = passes.total;
+  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), alpha, reconstruction, threads, result);
+  passes.fill(result);
+  result.info["settings"] = settings;
+  return result;
 }
 
 void GradientPasses::fill(RenderResult& result) const {

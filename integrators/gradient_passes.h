@@ -8,6 +8,9 @@
 
 #include <functional>
 #include <string>
+#include <vector>
+
+#include "core/stats.h"
 
 #include "gradients/gradient_buffers.h"
 #include "integrators/tile_scheduler.h"
@@ -27,6 +30,12 @@ struct GradientPasses {
 // thread's buffers.
 using GradientTileFunction =
     std::function<void(const Tile& tile, int spp, core::Rng& rng, int thread, gradients::GradientBuffers& buf)>;
+
+// The end of a pass render: merged counters, the reconstruction layers (gradient_output.h:
+// screened Poisson L1 and L2 without the direct layer, which is added back), fill() and
+// info["settings"] = settings. The caller sets wall_seconds (solves included).
+RenderResult gradient_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats, float alpha,
+                             const std::string& reconstruction, int threads, const core::Json& settings);
 
 GradientPasses render_gradient_passes(int width, int height, const RenderOptions& options, const std::string& label,
                                       const GradientTileFunction& fn);

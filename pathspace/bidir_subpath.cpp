@@ -122,17 +122,23 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
 
 }  // namespace
 
+namespace {
+// wi, pdf_fwd of path[n] and pdf_rev of path[n - 2], from the positions.
+void derive(const scene::Scene& scene, std::vector<BidirVertex>& path, size_t n, scene::TransportMode mode) {
+  BidirVertex& v = path[n];
+  const BidirVertex& prev = path[n - 1];
+  if (prev.infinite()) v.wi = prev.sp.ng;
+  else if (v.infinite()) v.wi = -v.sp.ng;
+  else v.wi = (prev.sp.p - v.sp.p).normalized();
+  v.pdf_fwd = v.pdf_rev = 0.0f;
+  set_densities(scene, path.data(), n, v, mode);
+}
+}  // namespace
+
 void append_vertex(const scene::Scene& scene, std::vector<BidirVertex>& path, const BidirVertex& v,
                    scene::TransportMode mode) {
   path.push_back(v);
-  const size_t n = path.size() - 1;
-  BidirVertex& nv = path[n];
-  const BidirVertex& prev = path[n - 1];
-  if (prev.infinite()) nv.wi = prev.sp.ng;
-  else if (nv.infinite()) nv.wi = -nv.sp.ng;
-  else nv.wi = (prev.sp.p - nv.sp.p).normalized();
-  nv.pdf_fwd = nv.pdf_rev = 0.0f;
-  set_densities(scene, path.data(), n, nv, mode);
+  derive(scene, path, path.size() - 1, mode);
 }
 
 void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& path, scene::TransportMode mode) {
@@ -140,15 +146,7 @@ void recompute_densities(const scene::Scene& scene, std::vector<BidirVertex>& pa
   BidirVertex& first = path[0];
   first.pdf_fwd = first.kind == BidirKind::camera ? 1.0f : light_pdf_pos(scene, first);
   first.pdf_rev = 0.0f;
-  for (size_t n = 1; n < path.size(); ++n) {
-    BidirVertex& v = path[n];
-    const BidirVertex& prev = path[n - 1];
-    if (prev.infinite()) v.wi = prev.sp.ng;
-    else if (v.infinite()) v.wi = -v.sp.ng;
-    else v.wi = (prev.sp.p - v.sp.p).normalized();
-    v.pdf_fwd = v.pdf_rev = 0.0f;
-    set_densities(scene, path.data(), n, v, mode);
-  }
+  for (size_t n = 1; n < path.size(); ++n) derive(scene, path, n, mode);
 }
 
 void camera_subpath(const scene::Scene& scene, const Vec2& raster, const SubpathParams& params, core::Rng& rng,

@@ -2,7 +2,6 @@
 
 #include "core/timer.h"
 #include "integrators/gbdpt/gbdpt_tracer.h"
-#include "integrators/gradient_output.h"
 #include "integrators/gradient_passes.h"
 
 namespace dp::integrators {
@@ -26,15 +25,9 @@ RenderResult GbdptIntegrator::render(const scene::Scene& scene, const RenderOpti
         counters.flush(thread_stats[size_t(thread)]);
       });
 
-  RenderResult result;
-  for (const auto& s : thread_stats) result.stats.merge(s);
-  // Screened Poisson reconstruction without the direct layer (Manzi 2015, Sec. 5, as G-PT).
-  const gradients::GradientBuffers& total = passes.total;
-  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), m_settings.alpha,
-                      m_settings.reconstruction, threads, result);
+  RenderResult result =
+      gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
   result.wall_seconds = timer.seconds();
-  passes.fill(result);
-  result.info["settings"] = m_json;
   return result;
 }
 

@@ -4,7 +4,6 @@
 #include "core/timer.h"
 #include "gradients/gradient_buffers.h"
 #include "integrators/gpt/gpt_tracer.h"
-#include "integrators/gradient_output.h"
 #include "integrators/gradient_passes.h"
 #include "integrators/tile_scheduler.h"
 #include "pathspace/sample_stream.h"
@@ -29,16 +28,9 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
         counters.flush(thread_stats[size_t(thread)]);
       });
 
-  RenderResult result;
-  for (const auto& s : thread_stats) result.stats.merge(s);
-  // Screened Poisson reconstruction without the direct layer (Lehtinen 2013, Eq. 8; Kettunen
-  // 2015, Sec. 6), which is added back afterwards.
-  const gradients::GradientBuffers& total = passes.total;
-  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), m_settings.alpha,
-                      m_settings.reconstruction, threads, result);
+  RenderResult result =
+      gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
   result.wall_seconds = timer.seconds();
-  passes.fill(result);
-  result.info["settings"] = m_json;
   return result;
 }
 
