@@ -61,9 +61,9 @@ TEST_CASE("G-BDPT gradients and L2 mean agree with PT in expectation; Jacobian a
   CHECK_FALSE(v.rejects());
   // ... and against BDPT (the primal's own estimator family: the same strategies).
   const Blocks b = stats(*s, "bdpt", 64, 3000);
-  const Verdict vb = verdict(g, b);
-  print("integrator", vb, g, b, "BDPT");
-  CHECK_FALSE(vb.rejects());
+  const Verdict v_bdpt = verdict(g, b);
+  print("integrator", v_bdpt, g, b, "BDPT");
+  CHECK_FALSE(v_bdpt.rejects());
   // ... and its tracer with explicit settings, the harness the defects below run through.
   integrators::Settings raw;
   const integrators::GbdptSettings settings = integrators::GbdptSettings::read(raw);
