@@ -70,6 +70,7 @@ void shift_camera_subpath(const scene::Scene& scene, const std::vector<BidirVert
   out.alive = 0;
   out.b = -1;
   out.rejoined = false;
+  out.specular_chain = false;
   out.jacobian = 1.0;
   out.mis_ratio.assign(base.size() + 1, 1.0);
   const int n = int(base.size());
@@ -136,7 +137,10 @@ void shift_camera_subpath(const scene::Scene& scene, const std::vector<BidirVert
   const BidirVertex& xn = base[size_t(b + 1)];
   BidirVertex& yb = out.path.back();
   if (!smooth_surface(yb)) return finish(ShiftStatus::not_invertible);
-  if (xn.kind == BidirKind::surface && !smooth_surface(xn) && !xn.emitter) return finish(ShiftStatus::not_invertible);
+  if (xn.kind == BidirKind::surface && !smooth_surface(xn) && !xn.emitter) {
+    out.specular_chain = true;
+    return finish(ShiftStatus::not_invertible);
+  }
   if (blocked(scene, yb, xn)) return finish(ShiftStatus::occluded);
   double J = 1.0;
   if (!xn.infinite())
@@ -200,6 +204,7 @@ bool shift_light_tracing(const scene::Scene& scene, const BidirVertex* light, in
   out.value = Rgb::Zero();
   out.mis_ratio = 1.0;
   out.jacobian = 1.0;
+  out.specular_chain = false;
   auto fail = [&](ShiftStatus st) {
     out.status = st;
     return false;
@@ -214,7 +219,10 @@ bool shift_light_tracing(const scene::Scene& scene, const BidirVertex* light, in
   BidirVertex y1 = surface_vertex(hit, x1, Vec3::Zero());
   y1.delta = false;  // the offset light subpath ends at y_1
   if (!smooth_surface(y1)) return fail(ShiftStatus::not_invertible);
-  if (z.kind != BidirKind::light && z.delta) return fail(ShiftStatus::not_invertible);  // specular chain
+  if (z.kind != BidirKind::light && z.delta) {  // a specular chain after b = y_1
+    out.specular_chain = true;
+    return fail(ShiftStatus::not_invertible);
+  }
   if (blocked(scene, y1, z)) return fail(ShiftStatus::occluded);
   out.light.assign(light, light + (s - 1));
   y1.beta = Rgb::Zero();

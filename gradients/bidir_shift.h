@@ -45,6 +45,7 @@ struct CameraSubpathShift {
   int alive = 0;           // vertices [0, alive) of `path` exist
   int b = -1;              // first base vertex with a smooth lobe (-1: not reached)
   bool rejoined = false;   // y_b reconnected to x_{b+1}
+  bool specular_chain = false;  // failed because x_{b+1} is specular (the walk b..c is not implemented)
   double jacobian = 1;     // solid-angle factor of that reconnection
   std::vector<double> mis_ratio;  // per t: q_t(T x) |T'| / q_t(x) of the camera prefix (MIS densities)
 };
@@ -76,6 +77,7 @@ struct LightTracingShift {
   Rgb value = Rgb::Zero();
   double mis_ratio = 1;  // q_s1(T x) |T'| / q_s1(x)
   double jacobian = 1;   // area factor |dy_1 / dx_1| = p_cam(x_1) / p_cam(y_1)
+  bool specular_chain = false;  // failed because light[s-2] is specular (no walk b..c yet)
 };
 bool shift_light_tracing(const scene::Scene& scene, const pathspace::BidirVertex* light, int s, const Vec2& raster,
                          const Vec2& offset, const BidirShiftOptions& options, LightTracingShift& out);

@@ -28,7 +28,9 @@ void GbdptCounters::flush(core::Stats& stats) const {
   stats.add("gbdpt.pairs.fallback", pairs_fallback);
   stats.add("gbdpt.pairs.outside_image", outside_image);
   // The manifold walk of a specular chain after b (Manzi 2015) is not implemented: such
-  // shifts fail as not_invertible (T_0 fallback) and no walk is ever run.
+  // shifts fail as not_invertible (T_0 fallback), counted here; no walk is ever run.
+  stats.add("gbdpt.shift.camera.fail.specular_chain", camera_chain);
+  stats.add("gbdpt.shift.light_tracing.fail.specular_chain", light_chain);
   stats.add("gbdpt.manifold.walks", 0);
 }
 
@@ -123,6 +125,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         ++counters.camera_shifts;
         counters.camera_rejoined += sc.shift.rejoined;
         if (sc.shift.status != ShiftStatus::ok) ++counters.camera_fail[size_t(sc.shift.status)];
+        counters.camera_chain += sc.shift.specular_chain;
       }
       const gradients::StrategyOffset so = gradients::camera_strategy_offset(sc.shift, sc.camera, term.t);
       if (so.exists) {
@@ -145,6 +148,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         w_off = double(pathspace::mis_weight(m_scene, sc.lt.light.data(), term.s, sc.camera.data(), 1, m_balance));
       } else {
         ++counters.light_fail[size_t(sc.lt.status)];
+        counters.light_chain += sc.lt.specular_chain;
       }
     }
     Rgbd g;
