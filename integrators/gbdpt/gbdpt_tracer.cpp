@@ -71,19 +71,25 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
       if (!ok) continue;
       GbdptTerm term{s, t, px, py, c.raster, c.value, 0.0, {}};
       term.reverse = pathspace::connection_reverse_pdfs(m_scene, sc.light.data(), s, sc.camera.data(), t);
-      const float w = pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_settings.mis, term.reverse);
-      if (!(w > 0.0f)) continue;
+      // The `mis` weight only where it is used (the direct layer, primal=bdpt); the
+      // gradients' balance weight for every shifted term (the same when mis=balance).
+      const bool direct = s + t == 2;
+      const bool balance = m_settings.mis.heuristic == pathspace::MisHeuristic::balance;
+      const bool primal_weight = direct || !m_pair_primal;
+      const float w = primal_weight || balance
+                          ? pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_settings.mis, term.reverse)
+                          : pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_balance, term.reverse);
+      if (!(w > 0.0f)) continue;  // the heuristics vanish together
       if (t == 1) {
         term.px = std::min(int(c.raster.x()), w_img - 1);
         term.py = std::min(int(c.raster.y()), h_img - 1);
       }
-      const bool direct = s + t == 2;
-      if (direct || !m_pair_primal) sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
+      if (primal_weight) sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
       if (direct) {
         ++counters.direct;
         continue;
       }
-      term.w_bal = m_settings.mis.heuristic == pathspace::MisHeuristic::balance
+      term.w_bal = !primal_weight || balance
                        ? double(w)
                        : double(pathspace::mis_weight(sc.light.data(), s, sc.camera.data(), t, m_balance, term.reverse));
       sc.terms.push_back(term);
