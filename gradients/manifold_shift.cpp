@@ -18,12 +18,6 @@ using pathspace::VertexKind;
 
 namespace {
 
-Chain reversed(const Chain& c) {
-  Chain r = c;
-  std::reverse(r.v.begin(), r.v.end());
-  return r;
-}
-
 bool is_refraction(const Vertex& v) { return v.wi.z() * v.wo.z() < 0.0f; }
 
 // A chain vertex: every condition here depends only on the vertex's shape (material,
@@ -33,6 +27,8 @@ bool specular_chain_vertex(const Vertex& v) {
          !v.hit.emitter && !(is_refraction(v) && v.eta == 1.0f);
 }
 
+}  // namespace
+
 ShiftStatus shift_status(WalkStatus s) {
   switch (s) {
     case WalkStatus::ok: return ShiftStatus::ok;
@@ -41,6 +37,8 @@ ShiftStatus shift_status(WalkStatus s) {
     default: return ShiftStatus::not_invertible;
   }
 }
+
+namespace {
 
 // |cos| at the chain's end (geometric normal) of the segment toward its neighbour.
 double end_cosine(const Chain& c) {
@@ -193,18 +191,7 @@ WalkStatus ManifoldShift::solve(const Path& path, int k, int m, const Vec3d& tar
                                 manifold::WalkResult& w, manifold::WalkStats& ws) const {
   const auto chain = make_chain(path, k, m);
   if (!chain) return WalkStatus::invalid_input;
-  // The chain re-traced in double from x_k along its sampled direction (the
-  // parameterization's coordinate): the float path satisfies the specular constraints
-  // only to ~1e-6, which near caustic folds perturbs G by up to ~1e-3 relative.
-  const WalkStatus st = manifold::retrace(m_scene, reversed(*chain), d3(path[k + 1].p()), exact);
-  ++ws.traces;
-  if (st != WalkStatus::ok) {
-    ws.record(st, 0);
-    return st;
-  }
-  exact = reversed(exact);  // pinned at the re-traced c, ending at x_k
-  w = manifold::walk(m_scene, exact, target, m_walk, &ws);
-  return w.status;
+  return manifold::walk_exact(m_scene, *chain, d3(path[k + 1].p()), target, m_walk, exact, w, ws);
 }
 
 ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResult& out) const {
@@ -299,7 +286,7 @@ ShiftStatus ManifoldShift::walk_chain(const Path& base, int k, int m, ShiftResul
       return ShiftStatus::not_invertible;
     }
   }
-  out.jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, false);
+  out.jacobian[size_t(k)] = reported_manifold_jacobian(J, m_opt.fault);
   out.reconnected = m;
   return ShiftStatus::ok;
 }

@@ -131,6 +131,10 @@ class ManifoldShift final : public ReconnectionShift {
   std::shared_ptr<const IncrementalManifoldShift> m_incremental;
 };
 
+// The shift failure a walk failure maps to: miss / different_object -> occluded, other
+// failures -> not_invertible (no offset chain found).
+ShiftStatus shift_status(manifold::WalkStatus s);
+
 // |d w'_b' / d w_b| of two chains pinned at the same c (see header): `base` ends at b,
 // `offset` at b'. ok, or the status of a degenerate chain (then J is not set).
 manifold::WalkStatus manifold_shift_jacobian(const manifold::Chain& base, const manifold::Chain& offset, double& J);

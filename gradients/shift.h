@@ -45,6 +45,7 @@ enum class JacobianFault : uint8_t {
   none,
   unit,              // every factor |dT/dx| reported as 1 (reconnection, half vector, manifold; path and NEE)
   unit_half_vector,  // only the half-vector copies' factors (glossy/specular vertices; path and NEE)
+  unit_manifold,     // only the manifold walks' factors (specular chains; G-PT and G-BDPT)
 };
 
 // The factor a shift stores: J itself, or 1 where `fault` forces it (`half_vector`: J is
@@ -52,7 +53,13 @@ enum class JacobianFault : uint8_t {
 inline double reported_jacobian(double J, JacobianFault fault, bool half_vector) {
   if (fault == JacobianFault::none) [[likely]]
     return J;
-  return fault == JacobianFault::unit || half_vector ? 1.0 : J;
+  return fault == JacobianFault::unit || (fault == JacobianFault::unit_half_vector && half_vector) ? 1.0 : J;
+}
+// The same for a manifold walk's factor.
+inline double reported_manifold_jacobian(double J, JacobianFault fault) {
+  if (fault == JacobianFault::none) [[likely]]
+    return J;
+  return fault == JacobianFault::unit || fault == JacobianFault::unit_manifold ? 1.0 : J;
 }
 
 struct ShiftResult {

@@ -1,5 +1,6 @@
 #include "manifold/walk.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "manifold/constraints.h"
@@ -153,6 +154,21 @@ WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& targ
     if (st != WalkStatus::ok) return finish(st);
   }
   return finish(WalkStatus::ok);
+}
+
+WalkStatus walk_exact(const scene::Scene& scene, const Chain& chain, const Vec3d& x_next, const Vec3d& target,
+                      const WalkSettings& settings, Chain& exact, WalkResult& w, WalkStats& stats) {
+  Chain rev = chain;
+  std::reverse(rev.v.begin(), rev.v.end());
+  const WalkStatus st = retrace(scene, rev, x_next, exact);
+  ++stats.traces;
+  if (st != WalkStatus::ok) {
+    stats.record(st, 0);
+    return st;
+  }
+  std::reverse(exact.v.begin(), exact.v.end());  // pinned at the re-traced start, ending at x_n
+  w = walk(scene, exact, target, settings, &stats);
+  return w.status;
 }
 
 WalkStatus check_reversible(const scene::Scene& scene, const Chain& original, const Chain& walked,

@@ -50,6 +50,16 @@ WalkStatus scatter(const ChainVertex& v, const Vec3d& w_a, Vec3d& w_b);
 WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& target, const WalkSettings& settings,
                 WalkStats* stats = nullptr);
 
+// A walk from the chain's exact form: re-traces `chain` (start x_0 pinned .. end x_n) in
+// double from its end x_n through `x_next` (its x_{n-1} in the path's float position: the
+// direction a path sampled at x_n, the parameterization's coordinate), so the re-traced
+// hit replaces the start (`exact`, every constraint to double precision), then walks that
+// chain's end to `target` (c pinned). A float path meets the specular constraints only to
+// ~1e-6, which near caustic folds perturbs the generalized geometry term by up to ~1e-3.
+// stats->traces counts the re-trace; stats records a failed re-trace as a walk failure.
+WalkStatus walk_exact(const scene::Scene& scene, const Chain& chain, const Vec3d& x_next, const Vec3d& target,
+                      const WalkSettings& settings, Chain& exact, WalkResult& w, WalkStats& stats);
+
 // Walks `walked` back to the end of `original` and requires every vertex to come back
 // within settings.reverse_tolerance * scene radius.
 WalkStatus check_reversible(const scene::Scene& scene, const Chain& original, const Chain& walked,

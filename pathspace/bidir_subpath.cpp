@@ -77,6 +77,8 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     const BidirVertex& prev = path.back();
     BidirVertex v;
     v.sp = hit;
+    v.shape = hit.shape;
+    v.prim = hit.prim;
     v.bsdf = hit.bsdf;
     v.emitter = hit.emitter;
     if (prev.infinite()) {

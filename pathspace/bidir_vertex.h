@@ -57,6 +57,7 @@ struct BidirVertex {
   // (f |cos| / pdf / rr). Zero / one at the last vertex.
   uint32_t lobe = 0;
   float u_lobe = 0, pdf_out = 0, rr_out = 1;
+  int32_t shape = -1, prim = -1;  // surface vertices: the hit shape and primitive (manifold walks)
   Rgb weight_out = Rgb::Zero();
 
   bool on_surface() const {
