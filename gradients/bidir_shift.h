@@ -11,8 +11,11 @@
 //    has one): y_b must be connectable too, and the next vertex x_{b+1} must be
 //    connectable (a smooth lobe, a light, or a connection vertex); then y_b reconnects to
 //    x_{b+1} (visibility tested from y_b -- along the base's direction for a light at
-//    infinity, never from the base's origin) and shares every later vertex.
-//    A specular chain after b (Manzi's manifold walk b..c) is not walked: such paths fail.
+//    infinity, never from the base's origin) and shares every later vertex;
+//  * if instead x_{b+1} .. x_{c-1} is a specular chain ending at a connectable x_c, the
+//    chain pinned at x_c is walked to end at y_b (Manzi's manifold walk b..c,
+//    bidir_chain.h) and the offset shares x_c and every later vertex. Light-tracing paths
+//    (b = 1) walk the same chain from the light side, so every strategy applies one map.
 // Every decision depends on (x_k, y_k, x_{k+1}) symmetrically, so T is a bijection between
 // the paths it succeeds on in the two pixels; a failed shift, or an offset of zero value,
 // is the T_0 fallback (the pair is not formed; each pixel keeps its own estimate).
@@ -23,6 +26,7 @@
 
 #include <vector>
 
+#include "gradients/bidir_chain.h"
 #include "gradients/shift.h"
 #include "pathspace/bidir_vertex.h"
 
@@ -30,6 +34,8 @@ namespace dp::gradients {
 
 struct BidirShiftOptions {
   JacobianFault fault = JacobianFault::none;  // tests' negative controls only (shift.h)
+  bool walk_chains = true;       // false: specular chains after b fail (T_0 fallback)
+  manifold::WalkSettings walk;   // the chain walks' settings (manifold/walk.h)
 };
 
 // The shift of a camera subpath x_0 .. x_{n-1} (pathspace::camera_subpath) into the
@@ -44,9 +50,12 @@ struct CameraSubpathShift {
   ShiftStatus status = ShiftStatus::ok;  // why vertex `alive` (or the reconnection) failed
   int alive = 0;           // vertices [0, alive) of `path` exist
   int b = -1;              // first base vertex with a smooth lobe (-1: not reached)
-  bool rejoined = false;   // y_b reconnected to x_{b+1}
-  bool specular_chain = false;  // failed because x_{b+1} is specular (the walk b..c is not implemented)
-  double jacobian = 1;     // solid-angle factor of that reconnection
+  bool rejoined = false;   // y_b reconnected to x_{b+1}, or rejoined at the end of a walked chain
+  int join = -1;           // the first shared vertex: b + 1, or the walked chain's end c
+  bool specular_chain = false;  // failed because x_{b+1} starts a chain that cannot be walked
+  bool walked = false;     // a chain walk was attempted (chain.stats counts it)
+  BidirChainWalk chain;    // the walk's result
+  double jacobian = 1;     // solid-angle factor at b (reconnection or walked chain)
   std::vector<double> mis_ratio;  // per t: q_t(T x) |T'| / q_t(x) of the camera prefix (MIS densities)
 };
 
@@ -68,16 +77,20 @@ StrategyOffset camera_strategy_offset(const CameraSubpathShift& shift,
 
 // The shift of a light-tracing path (strategy (s, 1), s >= 2): camera, x_1 = light[s-1],
 // light[s-2], ..., light[0]. The offset's first vertex is the primary hit y_1 through
-// raster + offset; it reconnects to light[s-2]. `light` receives the offset light
-// subpath light[0 .. s-2], y_1 (densities re-derived); `value` = f(T x)|T'| / p(x) of
-// the light-tracing strategy (its pixel is the base's pixel + offset).
+// raster + offset; it reconnects to light[s-2], or, if light[s-2] .. light[e+1] is a
+// specular chain ending at light[e], the chain pinned at light[e] is walked to end at y_1.
+// `light` receives the offset light subpath (the base's vertices up to the shared one, the
+// walked chain, y_1; densities re-derived); `value` = f(T x)|T'| / p(x) of the
+// light-tracing strategy (its pixel is the base's pixel + offset).
 struct LightTracingShift {
   std::vector<pathspace::BidirVertex> light;
   ShiftStatus status = ShiftStatus::ok;
   Rgb value = Rgb::Zero();
   double mis_ratio = 1;  // q_s1(T x) |T'| / q_s1(x)
   double jacobian = 1;   // area factor |dy_1 / dx_1| = p_cam(x_1) / p_cam(y_1)
-  bool specular_chain = false;  // failed because light[s-2] is specular (no walk b..c yet)
+  bool specular_chain = false;  // failed because light[s-2] starts a chain that cannot be walked
+  bool walked = false;          // a chain walk was attempted (chain.stats counts it)
+  BidirChainWalk chain;
 };
 bool shift_light_tracing(const scene::Scene& scene, const pathspace::BidirVertex* light, int s, const Vec2& raster,
                          const Vec2& offset, const BidirShiftOptions& options, LightTracingShift& out);

@@ -23,6 +23,9 @@ GbdptSettings GbdptSettings::read(Settings& s) {
                           "primal image: pairs (every shifted pair's estimates of both pixels, balance-weighted, "
                           "as G-PT) or bdpt (the plain BDPT estimate with the `mis` heuristic, as Manzi et al. 2015)",
                           {"pairs", "bdpt"});
+  g.manifold = s.get_bool("manifold", g.manifold,
+                          "walk specular chains b..c of the shift (Manzi et al. 2015, Sec. 4: the chain pinned at "
+                          "its end c walked to the offset's b); false: such shifts fail (T_0 fallback)");
   if (g.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
   return g;

@@ -24,6 +24,7 @@ struct GbdptSettings {
   float alpha = 0.2f;        // screened Poisson weight of the primal
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
   std::string primal = "pairs";       // pairs (both pixels' pair estimates, as G-PT) | bdpt
+  bool manifold = true;               // walk specular chains after b (Manzi 2015, Sec. 4)
   GbdptFaults faults;                 // tests only (see GbdptFaults)
 
   static GbdptSettings read(Settings& s);

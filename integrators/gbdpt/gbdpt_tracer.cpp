@@ -27,11 +27,12 @@ void GbdptCounters::flush(core::Stats& stats) const {
   stats.add("gbdpt.pairs.shifted", pairs_shifted);
   stats.add("gbdpt.pairs.fallback", pairs_fallback);
   stats.add("gbdpt.pairs.outside_image", outside_image);
-  // The manifold walk of a specular chain after b (Manzi 2015) is not implemented: such
-  // shifts fail as not_invertible (T_0 fallback), counted here; no walk is ever run.
+  // Specular chains after b that cannot be walked (ending at the environment or a delta
+  // light, or manifold=false) fail as not_invertible (T_0 fallback); the walks by outcome.
   stats.add("gbdpt.shift.camera.fail.specular_chain", camera_chain);
   stats.add("gbdpt.shift.light_tracing.fail.specular_chain", light_chain);
-  stats.add("gbdpt.manifold.walks", 0);
+  if (walks.attempted > 0) walks.flush(stats, "gbdpt.manifold");
+  else stats.add("gbdpt.manifold.walks", 0);  // no specular chain: no walk machinery ran
 }
 
 GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& settings, int max_depth)
@@ -40,6 +41,7 @@ GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& setting
   m_unweighted.unweighted = true;
   m_pair_primal = settings.primal == "pairs";
   m_shift.fault = settings.faults.jacobian;
+  m_shift.walk_chains = settings.manifold;
 }
 
 namespace {
@@ -132,6 +134,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         counters.camera_rejoined += sc.shift.rejoined;
         if (sc.shift.status != ShiftStatus::ok) ++counters.camera_fail[size_t(sc.shift.status)];
         counters.camera_chain += sc.shift.specular_chain;
+        if (sc.shift.walked) counters.walks.merge(sc.shift.chain.stats);
       }
       const gradients::StrategyOffset so = gradients::camera_strategy_offset(sc.shift, sc.camera, term.t);
       if (so.exists) {
@@ -147,7 +150,10 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
       }
     } else {
       ++counters.light_shifts;
-      if (gradients::shift_light_tracing(m_scene, sc.light.data(), term.s, term.raster, offset, m_shift, sc.lt)) {
+      const bool shifted =
+          gradients::shift_light_tracing(m_scene, sc.light.data(), term.s, term.raster, offset, m_shift, sc.lt);
+      if (sc.lt.walked) counters.walks.merge(sc.lt.chain.stats);
+      if (shifted) {
         ++counters.light_shifted;
         off = sc.lt.value;
         ratio = sc.lt.mis_ratio;

@@ -37,7 +37,8 @@ namespace dp::integrators {
 struct GbdptCounters {
   int64_t samples = 0, nan_dropped = 0, connections = 0, occluded = 0;
   int64_t camera_shifts = 0, camera_rejoined = 0, light_shifts = 0, light_shifted = 0;
-  int64_t camera_chain = 0, light_chain = 0;  // failed at a specular chain after b (no walk yet)
+  int64_t camera_chain = 0, light_chain = 0;  // a specular chain after b that cannot be walked
+  manifold::WalkStats walks;                  // the chain walks b..c (forward and reverse)
   std::array<int64_t, gradients::kShiftStatusCount> camera_fail{}, light_fail{};
   int64_t pairs_shifted = 0, pairs_fallback = 0, outside_image = 0, direct = 0;
   void flush(core::Stats& stats) const;

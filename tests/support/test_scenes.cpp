@@ -71,6 +71,38 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
+std::unique_ptr<scene::Scene> caustic_box(int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
+  const int black = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb::Zero()))));
+  const Vec3 p[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  auto add = [&](std::unique_ptr<scene::TriangleMesh> m, int mat) {
+    m->material = mat;
+    s->add_shape(std::move(m));
+  };
+  add(quad(p[0], p[1], p[5], p[4]), white);  // floor
+  add(quad(p[3], p[7], p[6], p[2]), black);  // ceiling
+  add(quad(p[0], p[4], p[7], p[3]), black);  // left
+  add(quad(p[1], p[2], p[6], p[5]), black);  // right
+  add(quad(p[0], p[3], p[2], p[1]), black);  // back
+  add(quad(p[4], p[5], p[6], p[7]), black);  // front (behind the camera)
+  // The shelf at y = 0.3 around the opening |x|, |z| <= 0.25.
+  constexpr float y = 0.3f, h = 0.25f;
+  auto shelf = [&](float x0, float x1, float z0, float z1) {
+    add(quad(Vec3(x0, y, z0), Vec3(x1, y, z0), Vec3(x1, y, z1), Vec3(x0, y, z1)), black);
+  };
+  shelf(-1, 1, h, 1);
+  shelf(-1, 1, -1, -h);
+  shelf(-1, -h, -h, h);
+  shelf(h, 1, -h, h);
+  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
+  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  auto glass = std::make_unique<scene::Sphere>(Vec3(0.0f, y, 0.0f), 0.4f);
+  glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
+  s->add_shape(std::move(glass));
+  return finish(std::move(s), Vec3(0.0f, -0.1f, 0.95f), Vec3(0.0f, -1.0f, -0.2f), 70.0f, resolution);
+}
+
 std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution, float sun) {
   auto s = std::make_unique<scene::Scene>();
   const int grey =

@@ -18,6 +18,13 @@ double furnace_radiance(float albedo, float emission, float point_intensity);
 // two spheres with the given BSDFs (either may be null = diffuse).
 std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution);
 
+// A caustic-only box: the box of lit_box with black walls and ceiling and a white floor;
+// a black shelf at y = 0.3 closes the upper part except a 0.5 x 0.5 opening under the
+// ceiling light, and a smooth glass sphere (eta 1.5, radius 0.4) centred in the opening
+// fills it, so every light path that reaches the floor passes through the glass (L S+ D):
+// the floor is lit by a caustic only. The camera looks down at the floor.
+std::unique_ptr<scene::Scene> caustic_box(int resolution);
+
 // An open scene lit only by a textured environment (a 32x16 lat-long checkerboard held in
 // memory: cells of 4x4 texels alternating warm bright (1.6, 1.4, 1.0) and dark blue
 // (0.15, 0.2, 0.3)) over a diffuse floor (albedo 0.5, y = -1), with a sphere of BSDF
