@@ -132,17 +132,19 @@ ShiftStatus walk_bidir_chain(const scene::Scene& scene, std::span<const BidirVer
   // The chain in exact (double) form, re-traced along the direction the base sampled: at
   // x_b for the camera walk (manifold::walk_exact), at x_c for the light walk (a re-trace
   // from the pinned start); then walked to y_b.
+  manifold::WalkSettings exact_settings = settings;
+  exact_settings.exact_input = true;  // solve() re-traces first
   const auto solve = [&](const Chain& ch, const Vec3& x_next, const Vec3& target, Chain& exact,
                          manifold::WalkResult& w) {
     if (mode == scene::TransportMode::radiance)
-      return manifold::walk_exact(scene, ch, d3(x_next), d3(target), settings, exact, w, out.stats);
+      return manifold::walk_exact(scene, ch, d3(x_next), d3(target), exact_settings, exact, w, out.stats);
     const WalkStatus r = manifold::retrace(scene, ch, ch.v[1].p(), exact);
     ++out.stats.traces;
     if (r != WalkStatus::ok) {
       out.stats.record(r, 0);
       return r;
     }
-    w = manifold::walk(scene, exact, d3(target), settings, &out.stats);
+    w = manifold::walk(scene, exact, d3(target), exact_settings, &out.stats);
     return w.status;
   };
   Chain exact;

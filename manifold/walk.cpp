@@ -107,9 +107,14 @@ WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& targ
   if (chain.n() < 2 || !target.allFinite()) return finish(WalkStatus::invalid_input);
   // Start from the chain re-traced through its own x_1, so the current chain satisfies
   // its constraints exactly (inputs from float paths do so only to ~1e-6).
-  WalkStatus st = retrace(scene, chain, chain.v[1].p(), r.chain);
-  if (stats) ++stats->traces;
-  if (st != WalkStatus::ok) return finish(st);
+  WalkStatus st = WalkStatus::ok;
+  if (settings.exact_input) {
+    r.chain = chain;
+  } else {
+    st = retrace(scene, chain, chain.v[1].p(), r.chain);
+    if (stats) ++stats->traces;
+    if (st != WalkStatus::ok) return finish(st);
+  }
   const int n = chain.n();
   const double scale = walk_scale(r.chain, target);
   r.distance = end_distance(r.chain, target);

@@ -25,6 +25,9 @@ struct WalkSettings {
   double min_step = 1.0 / 1024;    // step halving below this fails (step_too_small)
   double reverse_tolerance = 1e-5; // reversibility: relative to the scene radius
   bool check_reversible = false;   // walk back after every successful walk (--paranoid)
+  // The input chain already meets its constraints in double (just re-traced, as by
+  // walk_exact): skip walk()'s own initial re-trace (one of ~6 per walk).
+  bool exact_input = false;
 };
 
 struct WalkResult {
