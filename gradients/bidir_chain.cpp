@@ -21,16 +21,6 @@ using pathspace::BidirVertex;
 
 namespace {
 
-scene::SurfaceHit hit_of(const BidirVertex& v) {
-  scene::SurfaceHit h;
-  static_cast<scene::SurfacePoint&>(h) = v.sp;
-  h.shape = v.shape;
-  h.prim = v.prim;
-  h.bsdf = v.bsdf;
-  h.emitter = v.emitter;
-  return h;
-}
-
 bool area_light(const BidirVertex& v) {
   return v.kind == BidirKind::light && v.emitter && v.emitter->kind() == scene::EmitterKind::area;
 }
@@ -39,7 +29,7 @@ bool area_light(const BidirVertex& v) {
 // endpoint from its float data (a pinned vertex never moves: only its position and
 // normal enter), tagged with its shape so that re-traces may end on it.
 std::optional<ChainVertex> pinned(const scene::Scene& scene, const BidirVertex& c) {
-  if (c.kind == BidirKind::surface) return manifold::make_vertex(scene, hit_of(c), Interaction::reflection);
+  if (c.kind == BidirKind::surface) return manifold::make_vertex(scene, pathspace::surface_hit(c), Interaction::reflection);
   if (!area_light(c)) return std::nullopt;
   const scene::Shape* shape = static_cast<const scene::AreaEmitter*>(c.emitter)->shape();
   scene::SurfacePoint sp = c.sp;
@@ -64,7 +54,7 @@ std::optional<ChainVertex> interior(const scene::Scene& scene, const BidirVertex
     if (!bs || bs->eta == 1.0f) return std::nullopt;  // index-matched: no half vector
     eta = x.sp.ng.dot(x.wi) > 0.0f ? double(bs->eta) : 1.0 / double(bs->eta);
   }
-  return manifold::make_vertex(scene, hit_of(x), refraction ? Interaction::refraction : Interaction::reflection,
+  return manifold::make_vertex(scene, pathspace::surface_hit(x), refraction ? Interaction::refraction : Interaction::reflection,
                                eta);
 }
 
@@ -128,7 +118,7 @@ ShiftStatus walk_bidir_chain(const scene::Scene& scene, std::span<const BidirVer
     inner.push_back(*v);
   }
   Chain base;
-  if (!build_chain(scene, *c, inner, hit_of(*x[0]), base)) return ShiftStatus::not_invertible;
+  if (!build_chain(scene, *c, inner, pathspace::surface_hit(*x[0]), base)) return ShiftStatus::not_invertible;
   // The chain in exact (double) form, re-traced along the direction the base sampled: at
   // x_b for the camera walk (manifold::walk_exact), at x_c for the light walk (a re-trace
   // from the pinned start); then walked to y_b.
@@ -161,7 +151,7 @@ ShiftStatus walk_bidir_chain(const scene::Scene& scene, std::span<const BidirVer
   // The offset's chain re-traced in float from y_b through the walked positions (rays
   // leave from the vertex itself, pathspace/scatter.h): full SurfaceHits, and visibility.
   const double tol = 1e-4 * std::max(1.0, double(scene.scene_radius()));
-  scene::SurfaceHit from = hit_of(yb);
+  scene::SurfaceHit from = pathspace::surface_hit(yb);
   for (int j = 1; j <= m; ++j) {
     const Vec3d target = j < m ? w.chain.v[size_t(m - j)].p() : d3(x[size_t(m)]->sp.p);
     const Vec3 dir = (target.cast<float>() - from.p).normalized();
@@ -205,7 +195,7 @@ ShiftStatus walk_bidir_chain(const scene::Scene& scene, std::span<const BidirVer
   }
   Chain offset, back_exact;
   manifold::WalkResult back;
-  if (!build_chain(scene, *c, inner, hit_of(yb), offset)) return ShiftStatus::not_invertible;
+  if (!build_chain(scene, *c, inner, pathspace::surface_hit(yb), offset)) return ShiftStatus::not_invertible;
   st = solve(offset, out.steps[0].hit.p, x[0]->sp.p, back_exact, back);
   const double back_tol = settings.reverse_tolerance * std::max(1e-3, double(scene.scene_radius()));
   for (int i = 1; st == WalkStatus::ok && i < exact.n(); ++i)

@@ -78,6 +78,17 @@ struct BidirVertex {
   }
 };
 
+// The SurfaceHit of a surface vertex (shape, primitive, materials; ray parameter unset).
+inline scene::SurfaceHit surface_hit(const BidirVertex& v) {
+  scene::SurfaceHit h;
+  static_cast<scene::SurfacePoint&>(h) = v.sp;
+  h.shape = v.shape;
+  h.prim = v.prim;
+  h.bsdf = v.bsdf;
+  h.emitter = v.emitter;
+  return h;
+}
+
 // Solid-angle density of the BSDF at surface vertex v sampling toward unit world
 // direction `to`, arriving from unit world direction `from` (both pointing away from v).
 inline float bsdf_pdf(const BidirVertex& v, const Vec3& from, const Vec3& to, scene::TransportMode mode) {

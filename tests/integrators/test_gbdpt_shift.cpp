@@ -192,14 +192,6 @@ TEST_CASE("G-BDPT camera reconnection Jacobian equals finite differences of the 
 }
 
 namespace {
-scene::SurfaceHit hit_of(const BidirVertex& v) {
-  scene::SurfaceHit h;
-  static_cast<scene::SurfacePoint&>(h) = v.sp;
-  h.shape = v.shape;
-  h.prim = v.prim;
-  return h;
-}
-
 // The chain v[0] (pinned) .. v[n] in double for finite differences, independent of
 // gradients/bidir_chain.cpp: interaction types from the neighbours' sides, glass eta 1.5
 // (chain.h: index behind the geometric normal over the one in front; spheres face out).
@@ -220,7 +212,7 @@ std::optional<manifold::Chain> fd_chain(const scene::Scene& s, const std::vector
     bool refraction = false;
     if (k > 0 && k + 1 < v.size())
       refraction = x.sp.ng.dot(v[k - 1]->sp.p - x.sp.p) * x.sp.ng.dot(v[k + 1]->sp.p - x.sp.p) < 0.0f;
-    const auto cv = manifold::make_vertex(s, hit_of(x), refraction ? manifold::Interaction::refraction
+    const auto cv = manifold::make_vertex(s, pathspace::surface_hit(x), refraction ? manifold::Interaction::refraction
                                                                    : manifold::Interaction::reflection,
                                           refraction ? 1.5 : 1.0);
     if (!cv) return std::nullopt;

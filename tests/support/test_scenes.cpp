@@ -1,5 +1,7 @@
 #include "tests/support/test_scenes.h"
 
+#include <array>
+
 #include "scene/bsdfs.h"
 
 namespace dp::test {
@@ -11,6 +13,17 @@ std::unique_ptr<scene::TriangleMesh> quad(const Vec3& a, const Vec3& b, const Ve
   m->triangles = {{0, 1, 2}, {0, 2, 3}};
   m->finalize();
   return m;
+}
+
+// The walls of the box [-1,1]^3 with materials floor, ceiling, left, right, back, front.
+void add_box(scene::Scene& s, const std::array<int, 6>& mat) {
+  const Vec3 p[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  const int q[6][4] = {{0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+  for (int w = 0; w < 6; ++w) {
+    auto m = quad(p[q[w][0]], p[q[w][1]], p[q[w][2]], p[q[w][3]]);
+    m->material = mat[size_t(w)];
+    s.add_shape(std::move(m));
+  }
 }
 
 // Square-image camera, then commit: the last step of every test scene.
@@ -48,17 +61,7 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   auto s = std::make_unique<scene::Scene>();
   const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
   const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
-  const Vec3 p[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  auto add = [&](std::unique_ptr<scene::TriangleMesh> m, int mat) {
-    m->material = mat;
-    s->add_shape(std::move(m));
-  };
-  add(quad(p[0], p[1], p[5], p[4]), white);  // floor
-  add(quad(p[3], p[7], p[6], p[2]), white);  // ceiling
-  add(quad(p[0], p[4], p[7], p[3]), red);    // left
-  add(quad(p[1], p[2], p[6], p[5]), white);  // right
-  add(quad(p[0], p[3], p[2], p[1]), white);  // back
-  add(quad(p[4], p[5], p[6], p[7]), white);  // front (behind the camera)
+  add_box(*s, {white, white, red, white, white, white});
   // Ceiling light facing down, slightly below the ceiling.
   auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
   s->add_shape(std::move(light), Rgb(8, 8, 8));
@@ -75,17 +78,11 @@ std::unique_ptr<scene::Scene> caustic_box(int resolution) {
   auto s = std::make_unique<scene::Scene>();
   const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
   const int black = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb::Zero()))));
-  const Vec3 p[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  add_box(*s, {white, black, black, black, black, black});
   auto add = [&](std::unique_ptr<scene::TriangleMesh> m, int mat) {
     m->material = mat;
     s->add_shape(std::move(m));
   };
-  add(quad(p[0], p[1], p[5], p[4]), white);  // floor
-  add(quad(p[3], p[7], p[6], p[2]), black);  // ceiling
-  add(quad(p[0], p[4], p[7], p[3]), black);  // left
-  add(quad(p[1], p[2], p[6], p[5]), black);  // right
-  add(quad(p[0], p[3], p[2], p[1]), black);  // back
-  add(quad(p[4], p[5], p[6], p[7]), black);  // front (behind the camera)
   // The shelf at y = 0.3 around the opening |x|, |z| <= 0.25.
   constexpr float y = 0.3f, h = 0.25f;
   auto shelf = [&](float x0, float x1, float z0, float z1) {
