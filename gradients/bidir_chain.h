@@ -34,6 +34,12 @@
 
 namespace dp::gradients {
 
+struct BidirShiftOptions {
+  JacobianFault fault = JacobianFault::none;  // tests' negative controls only (shift.h)
+  bool walk_chains = true;       // false: specular chains after b fail (T_0 fallback)
+  manifold::WalkSettings walk;   // the chain walks' settings (manifold/walk.h)
+};
+
 // An offset chain vertex y_k, b < k < c, and its Dirac lobe replayed from the base's side.
 struct ChainStep {
   scene::SurfaceHit hit;

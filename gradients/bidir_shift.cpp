@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "gradients/bidir_chain.h"
+#include "gradients/bidir_helpers.h"
 #include "gradients/jacobians.h"
 #include "gradients/shift_helpers.h"
 #include "pathspace/bidir_light.h"
@@ -14,49 +15,7 @@ namespace dp::gradients {
 using pathspace::BidirKind;
 using pathspace::BidirVertex;
 
-namespace {
-
-double remap(float pdf) { return pdf != 0.0f ? double(pdf) : 1.0; }
-
-// Connectable as a reconnection end: a light endpoint, or a surface with a smooth lobe.
-bool smooth_surface(const BidirVertex& v) { return v.bsdf && !v.bsdf->is_purely_delta(); }
-
-// f(wi, wo) |cos wo| at surface vertex v in `mode` (shading normal), 0 on a sidedness
-// violation of either direction (as pathspace::connect).
-Rgb scatter(const BidirVertex& v, const Vec3& wi_world, const Vec3& wo_world, scene::TransportMode mode) {
-  if (!v.bsdf) return Rgb::Zero();
-  const Vec3 wi = v.sp.shading.to_local(wi_world), wo = v.sp.shading.to_local(wo_world);
-  if (!(v.sp.ng.dot(wi_world) * wi.z() > 0.0f) || !(v.sp.ng.dot(wo_world) * wo.z() > 0.0f)) return Rgb::Zero();
-  return v.bsdf->eval(scene::BsdfContext{v.sp.uv, mode}, wi, wo) * std::abs(wo.z());
-}
-
-bool blocked(const scene::Scene& scene, const BidirVertex& from, const BidirVertex& to) {
-  if (to.infinite()) return scene.occluded(scene.spawn_ray(from.sp, to.sp.ng));
-  return scene.occluded(scene.spawn_segment(from.sp, to.sp.p));
-}
-
-BidirVertex surface_vertex(const scene::SurfaceHit& hit, const BidirVertex& like, const Vec3& toward_prev) {
-  BidirVertex v;
-  v.sp = hit;
-  v.shape = hit.shape;
-  v.prim = hit.prim;
-  v.bsdf = hit.bsdf;
-  v.emitter = hit.emitter;
-  v.kind = BidirKind::surface;
-  v.wi = toward_prev;
-  v.delta = like.delta;
-  v.lobe = like.lobe;
-  v.u_lobe = like.u_lobe;
-  v.rr_out = like.rr_out;
-  return v;
-}
-
-// Unit direction from `from` toward vertex `to` (the light's direction at infinity).
-Vec3 direction(const BidirVertex& from, const BidirVertex& to) {
-  return to.infinite() ? Vec3(to.sp.ng) : Vec3((to.sp.p - from.sp.p).normalized());
-}
-
-}  // namespace
+using namespace bidir;
 
 double camera_area_pdf(const scene::Scene& scene, const BidirVertex& v) {
   const Vec3 d = v.sp.p - scene.camera().position();
@@ -246,102 +205,43 @@ StrategyOffset camera_strategy_offset(const CameraSubpathShift& shift, const std
 
 bool shift_light_tracing(const scene::Scene& scene, const BidirVertex* light, int s, const Vec2& raster,
                          const Vec2& offset, const BidirShiftOptions& options, LightTracingShift& out) {
-  out.light.clear();
   out.value = Rgb::Zero();
   out.mis_ratio = 1.0;
   out.jacobian = 1.0;
-  out.specular_chain = false;
+  out.light.clear();
+  out.specular_chain = out.walked = false;
   auto fail = [&](ShiftStatus st) {
     out.status = st;
     return false;
   };
-  out.walked = false;
   if (s < 2) return fail(ShiftStatus::not_invertible);  // a light seen directly is never shifted
   const BidirVertex& x1 = light[s - 1];
   const scene::PerspectiveCamera& cam = scene.camera();
   const Ray ray = cam.generate_ray(raster + offset);
   scene::SurfaceHit hit;
   if (!scene.intersect(ray, hit)) return fail(ShiftStatus::miss);
-  BidirVertex y1 = surface_vertex(hit, x1, Vec3::Zero());
-  y1.delta = false;  // the offset light subpath ends at y_1
+  const BidirVertex y1 = surface_vertex(hit, x1, Vec3::Zero());
   if (!smooth_surface(y1)) return fail(ShiftStatus::not_invertible);
-  // z = light[e]: the vertex y_1 rejoins (e = s - 2), or the end of a specular chain.
-  int e = s - 2;
-  const bool chain = light[e].kind != BidirKind::light && light[e].delta;
-  if (chain) {
-    while (e >= 1 && chain_interior(light[e])) --e;
-    if (!options.walk_chains || e == s - 2 || !chain_end(light[e]) || light[e].delta) {
-      out.specular_chain = true;
-      return fail(ShiftStatus::not_invertible);
-    }
-    thread_local std::vector<const BidirVertex*> xs;  // camera order: x_1 .. x_c = light[e]
-    xs.clear();
-    for (int j = s - 1; j >= e; --j) xs.push_back(&light[j]);
-    out.walked = true;
-    const ShiftStatus st = walk_bidir_chain(scene, xs, y1, scene::TransportMode::importance, options.walk, out.chain);
-    if (st != ShiftStatus::ok) return fail(st);
-  } else if (blocked(scene, y1, light[e])) {
-    return fail(ShiftStatus::occluded);
-  }
-  const BidirVertex& z = light[e];
-  out.light.assign(light, light + (e + 1));
-  Rgb dirac = Rgb::Ones();  // the walked chain's Dirac factors over the base's densities
-  if (chain)
-    for (int j = e + 1; j <= s - 2; ++j) {  // light order: from z toward y_1
-      const ChainStep& st = out.chain.steps[size_t(s - 2 - j)];
-      const BidirVertex& x = light[j];
-      BidirVertex v = surface_vertex(st.hit, x, Vec3::Zero());
-      v.beta = Rgb::Zero();
-      v.pdf_out = st.pdf;
-      v.weight_out = st.weight / x.rr_out;
-      pathspace::append_vertex(scene, out.light, v, scene::TransportMode::importance);
-      dirac *= st.weight * (st.pdf / (x.pdf_out * x.rr_out));
-    }
-  y1.beta = Rgb::Zero();
-  pathspace::append_vertex(scene, out.light, y1, scene::TransportMode::importance);
-  const BidirVertex& y = out.light.back();  // wi re-derived: toward its light-side neighbour
-  // f(T x)|T'| / p(x) in area measure: the light prefix up to z over its sampling density,
-  // z's factor toward its new successor with the area conversion at y_1 through the chain
-  // (d w_z / dA(y_1); without a chain |cos_y1| / d^2), the chain's Dirac factors, y_1's
-  // factor toward the camera, the camera's factor, and |dy_1/dx_1| = p_cam(x_1) / p_cam(y_1).
-  const BidirVertex& z_next = out.light[size_t(e + 1)];
-  const Vec3 w_z = z.infinite() ? Vec3(-z.sp.ng) : Vec3((z_next.sp.p - z.sp.p).normalized());
-  const Vec3 w_z_base = z.infinite() ? Vec3(-z.sp.ng) : Vec3((light[e + 1].sp.p - z.sp.p).normalized());
-  auto emit = [&](const Vec3& w) {
-    return z.kind == BidirKind::light ? pathspace::light_emit_cos(z, w)
-                                      : scatter(z, z.wi, w, scene::TransportMode::importance);
-  };
-  const Rgb fz = emit(w_z);
+  // The light subpath rejoined at y_1 (light_rejoin.h: reconnection or chain walk).
+  if (!rejoin_light_subpath(scene, light, s - 1, y1, options, out)) return false;
+  const BidirVertex& y = out.light.back();
+  // f(T x)|T'| / p(x) in area measure: the light side's throughput at y_1 over the base's
+  // density at x_1 (light_rejoin.h), y_1's factor toward the camera, the camera's factor,
+  // and |dy_1/dx_1| = p_cam(x_1) / p_cam(y_1).
   const Vec3 to_cam = (cam.position() - y.sp.p).normalized();
   const Rgb fy = scatter(y, y.wi, to_cam, scene::TransportMode::importance);
-  if (is_black(fz) || is_black(fy)) return fail(ShiftStatus::zero_contribution);
-  auto conv = [&](const BidirVertex& v) {  // area factor at v of a direction leaving z
-    if (z.infinite()) return std::abs(double(v.sp.ng.dot(z.sp.ng)));
-    const Vec3 d = z.sp.p - v.sp.p;
-    const double d2 = double(d.squaredNorm());
-    return std::abs(double(v.sp.ng.dot(d))) / (std::sqrt(d2) * d2);
-  };
+  if (is_black(fy)) return fail(ShiftStatus::zero_contribution);
   const double px = camera_area_pdf(scene, x1), py = camera_area_pdf(scene, y);
-  // [d w_z / dA(y_1)] / [d w_z / dA(x_1)]
-  const double area_ratio =
-      chain ? reported_manifold_jacobian(out.chain.start_density, options.fault) : conv(y) / conv(x1);
-  if (!(px > 0.0) || !(py > 0.0) || !(area_ratio > 0.0) || !std::isfinite(area_ratio))
-    return fail(ShiftStatus::zero_contribution);
+  if (!(px > 0.0) || !(py > 0.0)) return fail(ShiftStatus::zero_contribution);
   out.jacobian = reported_jacobian(px / py, options.fault, false);
   // camera factor of y_1 (pdf_direction / d^2, times fy's cosine) = p_cam(y_1) / |cos_y1|.
   const double cos_y = std::abs(double(y.sp.ng.dot(to_cam)));
   if (!(cos_y > 0.0)) return fail(ShiftStatus::zero_contribution);
-  const double scale = (py / cos_y) * out.jacobian * area_ratio / (double(z.pdf_out) * double(z.rr_out));
-  out.value = z.beta * fz * dirac * fy * float(scale);
-  if (chain) {  // q in light-walk coordinates: the direction at z, d w'_z / d w_z = area_ratio J_A
-    auto pdf_dir = [&](const Vec3& w) {
-      return double(z.kind == BidirKind::light ? pathspace::light_pdf_dir(z, w)
-                                               : pathspace::bsdf_pdf(z, z.wi, w, scene::TransportMode::importance));
-    };
-    out.mis_ratio = pdf_dir(w_z) / pdf_dir(w_z_base) * area_ratio * (px / py);
-  } else {
-    out.mis_ratio = remap(y.pdf_fwd) / remap(x1.pdf_fwd) * (px / py);
-  }
+  out.value = out.throughput * fy * float((py / cos_y) * out.jacobian);
+  // q in light-walk coordinates: the direction at z, d w'_z / d w_z = area_ratio J_A (for
+  // a reconnection the same as y_1's forward density ratio, kept in that form).
+  if (out.walked) out.mis_ratio = out.direction_ratio * out.area_ratio * (px / py);
+  else out.mis_ratio = remap(y.pdf_fwd) / remap(x1.pdf_fwd) * (px / py);
   if (!std::isfinite(out.mis_ratio)) return fail(ShiftStatus::zero_contribution);
   out.status = ShiftStatus::ok;
   return true;

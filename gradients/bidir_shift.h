@@ -27,16 +27,11 @@
 #include <vector>
 
 #include "gradients/bidir_chain.h"
+#include "gradients/light_rejoin.h"
 #include "gradients/shift.h"
 #include "pathspace/bidir_vertex.h"
 
 namespace dp::gradients {
-
-struct BidirShiftOptions {
-  JacobianFault fault = JacobianFault::none;  // tests' negative controls only (shift.h)
-  bool walk_chains = true;       // false: specular chains after b fail (T_0 fallback)
-  manifold::WalkSettings walk;   // the chain walks' settings (manifold/walk.h)
-};
 
 // The shift of a camera subpath x_0 .. x_{n-1} (pathspace::camera_subpath) into the
 // neighbouring pixel. `path` holds y_0 .. y_b (own vertices) and, after a successful
@@ -82,16 +77,12 @@ StrategyOffset camera_strategy_offset(const CameraSubpathShift& shift,
 // `light` receives the offset light subpath (the base's vertices up to the shared one, the
 // walked chain, y_1; densities re-derived); `value` = f(T x)|T'| / p(x) of the
 // light-tracing strategy (its pixel is the base's pixel + offset).
-struct LightTracingShift {
-  std::vector<pathspace::BidirVertex> light;
-  ShiftStatus status = ShiftStatus::ok;
-  Rgb value = Rgb::Zero();
-  double mis_ratio = 1;  // q_s1(T x) |T'| / q_s1(x)
-  double jacobian = 1;   // area factor |dy_1 / dx_1| = p_cam(x_1) / p_cam(y_1)
-  bool specular_chain = false;  // failed because light[s-2] starts a chain that cannot be walked
-  bool walked = false;          // a chain walk was attempted (chain.stats counts it)
-  BidirChainWalk chain;
+struct LightTracingShift : LightRejoin {  // the rejoin at y_1 (light_rejoin.h) plus the camera's factors
+  Rgb value = Rgb::Zero();  // f(T x)|T'| / p(x) of strategy (s, 1)
+  double mis_ratio = 1;     // q_s1(T x) |T'| / q_s1(x)
+  double jacobian = 1;      // area factor |dy_1 / dx_1| = p_cam(x_1) / p_cam(y_1)
 };
+
 bool shift_light_tracing(const scene::Scene& scene, const pathspace::BidirVertex* light, int s, const Vec2& raster,
                          const Vec2& offset, const BidirShiftOptions& options, LightTracingShift& out);
 
