@@ -19,6 +19,7 @@
 #include "scene/emitter.h"
 #include "scene/shape.h"
 #include "tests/support/furnace_bound.h"
+#include "tests/support/chain_fd.h"
 #include "tests/support/jj_bound.h"
 #include "tests/support/test_scenes.h"
 
@@ -39,20 +40,14 @@ std::unique_ptr<scene::Scene> glossy_glass_box() {
                        scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx), kRes);
 }
 
-// Central difference of f (a 3D point or direction map of 2 parameters) with Richardson
-// extrapolation (h, h/2): error O(h^4) instead of O(h^2).
-template <class F>
-Vec3d derivative(F&& f, int axis, double h) {
-  auto central = [&](double s) {
-    const double a = axis == 0 ? s : 0.0, b = axis == 1 ? s : 0.0;
-    return Vec3d((f(a, b) - f(-a, -b)) / (2.0 * s));
-  };
-  return Vec3d((4.0 * central(h / 2) - central(h)) / 3.0);
-}
-
 bool on_same_plane(const scene::SurfaceHit& a, const scene::SurfaceHit& b) {
   return a.shape == b.shape && (a.ng - b.ng).norm() < 1e-6f && std::abs(a.ng.dot(b.p - a.p)) < 1e-5f;
 }
+
+using test::derivative;
+using test::camera_order;
+using test::fd_chain;
+using test::area_per_solid_angle;
 
 scene::BsdfPtr mirror() { return scene::make_mirror(scene::constant_texture(Rgb::Constant(0.9f))); }
 scene::BsdfPtr glass() { return scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx); }
@@ -83,12 +78,6 @@ template <class V>
 std::vector<const BidirVertex*> pointers(const V& v, int n) {
   std::vector<const BidirVertex*> out;
   for (int k = 0; k < n; ++k) out.push_back(&v[size_t(k)]);
-  return out;
-}
-// Light vertices light[lo .. hi] in camera order (light[hi] first).
-std::vector<const BidirVertex*> camera_order(const std::vector<BidirVertex>& light, int lo, int hi) {
-  std::vector<const BidirVertex*> out;
-  for (int j = hi; j >= lo; --j) out.push_back(&light[size_t(j)]);
   return out;
 }
 }  // namespace
@@ -191,57 +180,6 @@ TEST_CASE("G-BDPT camera reconnection Jacobian equals finite differences of the 
   CHECK(worst <= 1e-4);
 }
 
-namespace {
-// The chain v[0] (pinned) .. v[n] in double for finite differences, independent of
-// gradients/bidir_chain.cpp: interaction types from the neighbours' sides, glass eta 1.5
-// (chain.h: index behind the geometric normal over the one in front; spheres face out).
-std::optional<manifold::Chain> fd_chain(const scene::Scene& s, const std::vector<const BidirVertex*>& v) {
-  manifold::Chain ch;
-  for (size_t k = 0; k < v.size(); ++k) {
-    const BidirVertex& x = *v[k];
-    if (x.kind == pathspace::BidirKind::light) {  // an area light's endpoint, pinned
-      scene::SurfacePoint sp = x.sp;
-      sp.dpdu = sp.shading.s;
-      manifold::ChainVertex cv = manifold::make_vertex(sp, manifold::Interaction::reflection);
-      const auto* shape = static_cast<const scene::AreaEmitter*>(x.emitter)->shape();
-      for (size_t i = 0; i < s.shapes().size(); ++i)
-        if (s.shapes()[i].get() == shape) cv.shape = int32_t(i);
-      ch.v.push_back(cv);
-      continue;
-    }
-    bool refraction = false;
-    if (k > 0 && k + 1 < v.size())
-      refraction = x.sp.ng.dot(v[k - 1]->sp.p - x.sp.p) * x.sp.ng.dot(v[k + 1]->sp.p - x.sp.p) < 0.0f;
-    const auto cv = manifold::make_vertex(s, pathspace::surface_hit(x), refraction ? manifold::Interaction::refraction
-                                                                   : manifold::Interaction::reflection,
-                                          refraction ? 1.5 : 1.0);
-    if (!cv) return std::nullopt;
-    ch.v.push_back(*cv);
-  }
-  return ch;
-}
-
-// Area at the chain's end per unit solid angle at its pinned start, |dA_n / d w_0|, by
-// central differences (Richardson) of the double re-trace over a gnomonic chart around
-// the direction toward v[1]. 0 if a perturbed re-trace fails.
-double area_per_solid_angle(const scene::Scene& s, const manifold::Chain& ch) {
-  const Vec3d o = ch.v[0].p(), w = (ch.v[1].p() - o).normalized();
-  const Frame f = Frame::from_normal(w.cast<float>());
-  const Vec3d e0 = f.s.cast<double>(), e1 = f.t.cast<double>();
-  bool ok = true;
-  auto map = [&](double a, double b) -> Vec3d {
-    manifold::Chain out;
-    if (manifold::retrace(s, ch, o + (w + a * e0 + b * e1).normalized(), out) != manifold::WalkStatus::ok) {
-      ok = false;
-      return Vec3d::Zero();
-    }
-    return out.v.back().p();
-  };
-  const double h = 1e-4;
-  const Vec3d du = derivative(map, 0, h), dv = derivative(map, 1, h);
-  return ok ? du.cross(dv).norm() : 0.0;
-}
-}  // namespace
 
 TEST_CASE("G-BDPT walked-chain Jacobians equal finite differences of the traced chains", "[unit]") {
   // Camera side: |d w'_b / d w_b| = (dA_c/d w_b) / (dA_c/d w'_b) through the base's and the
