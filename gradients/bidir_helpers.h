@@ -31,13 +31,7 @@ inline bool blocked(const scene::Scene& scene, const BidirVertex& from, const Bi
 }
 
 inline BidirVertex surface_vertex(const scene::SurfaceHit& hit, const BidirVertex& like, const Vec3& toward_prev) {
-  BidirVertex v;
-  v.sp = hit;
-  v.shape = hit.shape;
-  v.prim = hit.prim;
-  v.bsdf = hit.bsdf;
-  v.emitter = hit.emitter;
-  v.kind = BidirKind::surface;
+  BidirVertex v = pathspace::surface_vertex_at(hit);
   v.wi = toward_prev;
   v.delta = like.delta;
   v.lobe = like.lobe;

@@ -75,12 +75,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
       break;
     }
     const BidirVertex& prev = path.back();
-    BidirVertex v;
-    v.sp = hit;
-    v.shape = hit.shape;
-    v.prim = hit.prim;
-    v.bsdf = hit.bsdf;
-    v.emitter = hit.emitter;
+    BidirVertex v = surface_vertex_at(hit);
     if (prev.infinite()) {
       v.wi = prev.sp.ng;  // exactly toward the light at infinity
     } else {
@@ -90,7 +85,6 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
       v.wi = d / len;
     }
     v.beta = beta;
-    v.kind = BidirKind::surface;
     set_densities(scene, path.data(), path.size(), v, mode);
     path.push_back(v);
     if (int(path.size()) >= params.max_vertices || !hit.bsdf) break;

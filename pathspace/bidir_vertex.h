@@ -78,6 +78,18 @@ struct BidirVertex {
   }
 };
 
+// A surface vertex at `hit` (kind surface; wi, densities and the walk's record unset).
+inline BidirVertex surface_vertex_at(const scene::SurfaceHit& hit) {
+  BidirVertex v;
+  v.sp = hit;
+  v.shape = hit.shape;
+  v.prim = hit.prim;
+  v.bsdf = hit.bsdf;
+  v.emitter = hit.emitter;
+  v.kind = BidirKind::surface;
+  return v;
+}
+
 // The SurfaceHit of a surface vertex (shape, primitive, materials; ray parameter unset).
 inline scene::SurfaceHit surface_hit(const BidirVertex& v) {
   scene::SurfaceHit h;
