@@ -1,5 +1,7 @@
 #include "apps/output.h"
 
+#include <sys/resource.h>
+
 #include <fstream>
 
 #include "core/error.h"
@@ -14,6 +16,15 @@ std::string sibling_path(const std::string& exr_path, const std::string& ext) {
   return (has_ext ? exr_path.substr(0, dot) : exr_path) + ext;
 }
 
+namespace {
+// Peak resident set size of this process so far, in bytes (Linux reports KiB); 0 if unknown.
+uint64_t peak_rss_bytes() {
+  rusage ru{};
+  if (getrusage(RUSAGE_SELF, &ru) != 0 || ru.ru_maxrss <= 0) return 0;
+  return uint64_t(ru.ru_maxrss) * 1024u;
+}
+}  // namespace
+
 void write_render_outputs(const std::string& exr_path, integrators::RenderResult& result, core::Json sidecar) {
   size_t nonfinite = 0;
   for (auto& l : result.layers) nonfinite += l.image.zero_nonfinite();
@@ -26,6 +37,7 @@ void write_render_outputs(const std::string& exr_path, integrators::RenderResult
   sidecar["spp_max"] = result.max_spp;
   sidecar["partial"] = result.partial;
   sidecar["nonfinite_pixels_zeroed"] = uint64_t(nonfinite);
+  sidecar["peak_rss_bytes"] = peak_rss_bytes();  // the whole process: scene, render and outputs
   core::Json layers = core::Json::array();
   for (const auto& l : result.layers) layers.push_back(l.name.empty() ? "RGB" : l.name);
   sidecar["layers"] = layers;

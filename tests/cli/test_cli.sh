@@ -18,6 +18,7 @@ check "render exits 0" test $? -eq 0
 check "render writes exr/png/json" test -s "$tmp/c.exr" -a -s "$tmp/c.png" -a -s "$tmp/c.json"
 check "sidecar has settings and spp" grep -q '"rr_depth": "3"' "$tmp/c.json"
 check "sidecar not partial" grep -q '"partial": false' "$tmp/c.json"
+check "sidecar records peak memory" grep -Eq '"peak_rss_bytes": [1-9][0-9]{6,}' "$tmp/c.json"
 
 # 2. Bad input: one line on stderr naming file:line, exit code 1, no crash.
 printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resolution: [8, 8]}\nshapes:\n  - {type: sphere, center: [0,0,3], radius: -1, material: nope}\n' > "$tmp/bad.yaml"
