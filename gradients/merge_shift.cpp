@@ -6,11 +6,11 @@ namespace dp::gradients {
 
 using namespace bidir;
 
-bool shift_merge(const scene::Scene& scene, const BidirVertex* light, int j, const CameraSubpathShift& shift,
-                 const BidirShiftOptions& options, MergeShift& out) {
+bool shift_merge(const scene::Scene& scene, const BidirVertex* light, int j, const std::vector<BidirVertex>& camera,
+                 const CameraSubpathShift& shift, const BidirShiftOptions& options, MergeShift& out) {
   out.value = Rgb::Zero();
   const int b = shift.b;
-  if (j < 1 || b < 1 || shift.alive <= b) {
+  if (j < 1 || b < 1 || shift.alive <= b || int(camera.size()) <= b || !smooth_surface(camera[size_t(b)])) {
     out.light.clear();
     out.status = ShiftStatus::not_invertible;
     return false;

@@ -27,9 +27,12 @@ struct MergeShift : LightRejoin {  // `light`: the offset light subpath, ending 
   Rgb value = Rgb::Zero();          // (header)
 };
 
-// light[0 .. j]: the photon's light subpath (j >= 1); `shift`: the camera subpath's shift
-// (shift.b = the merge vertex's index, shift.path[b] = z_b^off).
-bool shift_merge(const scene::Scene& scene, const pathspace::BidirVertex* light, int j, const CameraSubpathShift& shift,
+// light[0 .. j]: the photon's light subpath (j >= 1); `camera`: the base camera subpath and
+// `shift` its shift (shift.b = the merge vertex's index, shift.path[b] = z_b^off). Both z_b
+// and z_b^off must have a smooth lobe (a merge evaluates the BSDF there), so the condition
+// is the same for the reverse shift.
+bool shift_merge(const scene::Scene& scene, const pathspace::BidirVertex* light, int j,
+                 const std::vector<pathspace::BidirVertex>& camera, const CameraSubpathShift& shift,
                  const BidirShiftOptions& options, MergeShift& out);
 
 }  // namespace dp::gradients

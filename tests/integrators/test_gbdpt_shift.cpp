@@ -26,9 +26,6 @@
 using namespace dp;
 using pathspace::BidirVertex;
 
-namespace {
-Vec3d d3v(const Vec3& v) { return v.cast<double>(); }
-}  // namespace
 
 namespace {
 constexpr int kRes = 16;
@@ -44,6 +41,7 @@ bool on_same_plane(const scene::SurfaceHit& a, const scene::SurfaceHit& b) {
   return a.shape == b.shape && (a.ng - b.ng).norm() < 1e-6f && std::abs(a.ng.dot(b.p - a.p)) < 1e-5f;
 }
 
+using test::bidir_jj_tolerance;
 using test::derivative;
 using test::camera_order;
 using test::fd_chain;
@@ -51,28 +49,6 @@ using test::area_per_solid_angle;
 
 scene::BsdfPtr mirror() { return scene::make_mirror(scene::constant_texture(Rgb::Constant(0.9f))); }
 scene::BsdfPtr glass() { return scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx); }
-
-// tests/support/jj_bound.h over vertices x[k0 .. k1] of a path (any order) and their
-// positions `back` after the round trip; neighbours outside [k0, k1] enter as segment ends.
-double bidir_jj_tolerance(const std::vector<const BidirVertex*>& x, const std::vector<const BidirVertex*>& back,
-                          int k0, int k1) {
-  auto normal = [&](int j) { return x[size_t(j)]->on_surface() ? d3v(x[size_t(j)]->sp.ng) : Vec3d(Vec3d::Zero()); };
-  double sum = 0, gain = 1;
-  for (int k = k0; k <= k1; ++k) {
-    const BidirVertex& v = *x[size_t(k)];
-    std::vector<std::pair<Vec3d, Vec3d>> ends;
-    if (k > 0) ends.emplace_back(d3v(x[size_t(k - 1)]->sp.p), normal(k - 1));
-    if (k + 1 < int(x.size())) ends.emplace_back(d3v(x[size_t(k + 1)]->sp.p), normal(k + 1));
-    sum += test::jj_vertex_term(d3v(back[size_t(k)]->sp.p - v.sp.p).norm(), d3v(v.sp.p), normal(k), ends, 1.0);
-    if (gradients::chain_interior(v) && k + 1 < int(x.size())) {
-      double kappa = 0;
-      if (v.sp.dpdu.norm() > 0) kappa = std::max(kappa, double(v.sp.dndu.norm() / v.sp.dpdu.norm()));
-      if (v.sp.dpdv.norm() > 0) kappa = std::max(kappa, double(v.sp.dndv.norm() / v.sp.dpdv.norm()));
-      gain *= 1 + 2 * kappa * d3v(x[size_t(k + 1)]->sp.p - v.sp.p).norm();
-    }
-  }
-  return sum * gain + 1e-12;
-}
 
 template <class V>
 std::vector<const BidirVertex*> pointers(const V& v, int n) {

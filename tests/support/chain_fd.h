@@ -7,11 +7,13 @@
 #include <optional>
 #include <vector>
 
+#include "gradients/bidir_chain.h"
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
 #include "pathspace/bidir_vertex.h"
 #include "scene/emitter.h"
 #include "scene/shape.h"
+#include "tests/support/jj_bound.h"
 
 namespace dp::test {
 
@@ -83,6 +85,30 @@ inline double area_per_solid_angle(const scene::Scene& s, const manifold::Chain&
   const double h = 1e-4;
   const Vec3d du = derivative(map, 0, h), dv = derivative(map, 1, h);
   return ok ? du.cross(dv).norm() : 0.0;
+}
+
+// tests/support/jj_bound.h over vertices x[k0 .. k1] of a path (any order) and their
+// positions `back` after a round trip; neighbours outside [k0, k1] enter as segment ends;
+// the chain's Dirac vertices multiply the bound by their curvature gain.
+inline double bidir_jj_tolerance(const std::vector<const pathspace::BidirVertex*>& x,
+                                 const std::vector<const pathspace::BidirVertex*>& back, int k0, int k1) {
+  auto d3 = [](const Vec3& v) { return Vec3d(v.cast<double>()); };
+  auto normal = [&](int j) { return x[size_t(j)]->on_surface() ? d3(x[size_t(j)]->sp.ng) : Vec3d(Vec3d::Zero()); };
+  double sum = 0, gain = 1;
+  for (int k = k0; k <= k1; ++k) {
+    const pathspace::BidirVertex& v = *x[size_t(k)];
+    std::vector<std::pair<Vec3d, Vec3d>> ends;
+    if (k > 0) ends.emplace_back(d3(x[size_t(k - 1)]->sp.p), normal(k - 1));
+    if (k + 1 < int(x.size())) ends.emplace_back(d3(x[size_t(k + 1)]->sp.p), normal(k + 1));
+    sum += jj_vertex_term(d3(back[size_t(k)]->sp.p - v.sp.p).norm(), d3(v.sp.p), normal(k), ends, 1.0);
+    if (gradients::chain_interior(v) && k + 1 < int(x.size())) {
+      double kappa = 0;
+      if (v.sp.dpdu.norm() > 0) kappa = std::max(kappa, double(v.sp.dndu.norm() / v.sp.dpdu.norm()));
+      if (v.sp.dpdv.norm() > 0) kappa = std::max(kappa, double(v.sp.dndv.norm() / v.sp.dpdv.norm()));
+      gain *= 1 + 2 * kappa * d3(x[size_t(k + 1)]->sp.p - v.sp.p).norm();
+    }
+  }
+  return sum * gain + 1e-12;
 }
 
 }  // namespace dp::test
