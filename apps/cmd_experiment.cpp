@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "apps/cli_checks.h"
 #include "core/log.h"
 #include "experiments/config.h"
 #include "experiments/runner.h"
@@ -49,7 +50,7 @@ void register_experiment(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("experiment", "run an experiment file: renders, CSV, convergence plot, HTML report");
   cmd->add_option("file", args->file, "experiment file (YAML)")->required();
   cmd->add_option("--out", args->out, "output folder (default: the file's `output`)");
-  cmd->add_option("--threads", args->threads, "worker threads per render (default: all cores)");
+  cmd->add_option("--threads", args->threads, "worker threads per render (default: all cores)")->check(thread_count());
   cmd->add_flag("--no-plot", args->no_plot, "do not run the plot script");
   cmd->add_flag("--quiet", args->quiet, "no progress lines or info messages");
   cmd->callback([args] { run(*args); });

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "apps/cli_checks.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
@@ -84,7 +85,7 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--alpha", args->alpha, "weight of the primal image (default 0.2)");
   cmd->add_option("--symmetric-weight", args->symmetric_weight,
                   "weight of each row whose reversed pair is also a row (gdmlt's symmetric_weight; default 1)");
-  cmd->add_option("--threads", args->threads, "worker threads (0 = all)");
+  cmd->add_option("--threads", args->threads, "worker threads (0 = all)")->check(thread_count());
   cmd->add_option("--out", args->out, "output EXR (a PNG preview is written beside it)")->required();
   cmd->callback([args] { run_reconstruct(*args); });
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/cli_checks.h"
 #include "apps/commands.h"
 #include "apps/output.h"
 #include "core/error.h"
@@ -86,11 +87,15 @@ void register_render(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "render a scene (YAML or Mitsuba XML)");
   cmd->add_option("scene", args->scene, "scene file")->required();
   cmd->add_option("--integrator", args->integrator, "integrator (default: the scene's, else path)");
-  auto* spp = cmd->add_option("--spp", args->spp, "samples per pixel (default: the scene's, else 16)");
-  cmd->add_option("--time", args->time, "wall-clock budget in seconds (instead of --spp)")->excludes(spp);
+  auto* spp = cmd->add_option("--spp", args->spp, "samples per pixel (default: the scene's, else 16)")
+                  ->check(sample_count());
+  cmd->add_option("--time", args->time, "wall-clock budget in seconds (instead of --spp)")
+      ->excludes(spp)
+      ->check(seconds());
   cmd->add_option("--seed", args->seed, "random seed (default 0)");
-  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)");
-  cmd->add_option("--max-depth", args->max_depth, "maximum path segments (default: the scene's, else 8)");
+  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(thread_count());
+  cmd->add_option("--max-depth", args->max_depth, "maximum path segments (default: the scene's, else 8)")
+      ->check(path_depth());
   cmd->add_option("--set", args->sets, "integrator setting key=value (repeatable)");
   cmd->add_option("--out", args->out, "output EXR (also writes .png and .json beside it)");
   cmd->add_flag("--quiet", args->quiet, "no progress bar or info messages");

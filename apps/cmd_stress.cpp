@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "apps/cli_checks.h"
 #include "core/error.h"
 #include "experiments/stress.h"
 
@@ -39,7 +40,7 @@ void register_stress(CLI::App& app) {
   cmd->add_option("--seed", args->options.seed, "randomization seed (default 1)");
   cmd->add_option("--integrator", args->options.integrators, "only these integrators (repeatable; default all)");
   cmd->add_option("--variants", args->options.variants, "random variants per scene family (default 1 quick, 3 full)");
-  cmd->add_option("--threads", args->options.threads, "worker threads (default: all cores)");
+  cmd->add_option("--threads", args->options.threads, "worker threads (default: all cores)")->check(thread_count());
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_option("--images", args->options.image_dir, "write a PNG preview of every render into this folder");
   cmd->callback([args] { run(*args); });

@@ -32,6 +32,10 @@ void write_render_outputs(const std::string& exr_path, integrators::RenderResult
   core::write_exr(exr_path, result.layers);
   core::write_png(sibling_path(exr_path, ".png"), result.layers.at(0).image);
 
+  if (result.min_spp == 0 && !result.partial) {  // e.g. a time budget below one pass
+    log::warn("some pixels have no sample (time budget too small?): the output is marked partial");
+    result.partial = true;
+  }
   sidecar["wall_seconds"] = result.wall_seconds;
   sidecar["spp_min"] = result.min_spp;
   sidecar["spp_max"] = result.max_spp;

@@ -39,6 +39,25 @@ check "unknown setting is named" grep -q "no_such_key" "$tmp/err"
 "$bin" render scenes/cornell.yaml --integrator nope --quiet 2>"$tmp/err"
 check "unknown integrator exits 1" test $? -eq 1
 
+# Extreme numeric options are usage errors naming the option (issue 18), never silently
+# ignored, an endless render or an abort.
+for bad in "--spp 0" "--spp -1" "--max-depth -1" "--time nan" "--time inf" "--time -3" "--threads 100000"; do
+  set -- $bad
+  "$bin" render scenes/cornell.yaml $bad --quiet --out "$tmp/v.exr" 2>"$tmp/err" >/dev/null
+  code=$?
+  check "render $bad is a usage error (exit $code)" test $code -ne 0 -a $code -lt 128
+  check "render $bad names $1" grep -q -- "^$1:" "$tmp/err"
+done
+for cmd in "stress --quick" "experiment experiments/figures/gbdpt_vs_bdpt.yaml"; do
+  "$bin" $cmd --threads 100000 2>"$tmp/err" >/dev/null
+  code=$?
+  check "$cmd --threads 100000 is a usage error (exit $code)" test $code -ne 0 -a $code -lt 128
+done
+# A time budget below one pass: whatever was rendered, marked partial.
+"$bin" render scenes/cornell.yaml --time 1e-9 --quiet --out "$tmp/tiny.exr" 2>"$tmp/err"
+check "tiny time budget exits 0" test $? -eq 0
+check "tiny time budget is marked partial" grep -q '"partial": true' "$tmp/tiny.json"
+
 # 3. Ctrl-C stops at a tile boundary and writes what was rendered, marked partial.
 "$bin" render scenes/cornell.yaml --time 60 --threads 2 --quiet --out "$tmp/int.exr" 2>"$tmp/err" &
 pid=$!

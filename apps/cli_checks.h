@@ -1,0 +1,46 @@
+// Range checks of the CLI's numeric options (issue 18: extreme values are usage errors,
+// never aborts or silently ignored values). CLI11 reports a failed check as one usage
+// line naming the option.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace dp::apps {
+
+constexpr int kMaxThreads = 1024;  // far above any machine this runs on; 0 = all cores
+
+inline const CLI::Validator& thread_count() {
+  static const CLI::Range r(0, kMaxThreads);
+  return r;
+}
+inline const CLI::Validator& sample_count() {
+  static const CLI::Range r(1, 1 << 30);
+  return r;
+}
+inline const CLI::Validator& path_depth() {
+  static const CLI::Range r(1, 1024);
+  return r;
+}
+// A positive, finite number of seconds, at most a year (CLI::Range lets NaN through).
+inline const CLI::Validator& seconds() {
+  static const CLI::Validator v(
+      [](std::string& s) -> std::string {
+        size_t used = 0;
+        double t = 0;
+        try {
+          t = std::stod(s, &used);
+        } catch (...) {
+          return "expects a number of seconds, got '" + s.substr(0, 40) + "'";
+        }
+        if (used != s.size()) return "expects a number of seconds, got '" + s.substr(0, 40) + "'";
+        if (!std::isfinite(t) || !(t > 0.0) || t > 3.2e7) return "must be a finite number of seconds in (0, 3.2e7]";
+        return std::string();
+      },
+      "SECONDS");
+  return v;
+}
+
+}  // namespace dp::apps
