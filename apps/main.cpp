@@ -1,6 +1,7 @@
 // deltapath: command-line front end (render, info, compare, layer, reconstruct, experiment, stress).
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "apps/cmd_experiment.h"
 #include "apps/cmd_reconstruct.h"
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
   } catch (const dp::Error& e) {
     std::fprintf(stderr, "deltapath: %s\n", e.what());
     return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "deltapath: error: out of memory (the scene or image is too large for this machine)\n");
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "deltapath: error: %s\n", e.what());
     return 2;

@@ -8,6 +8,15 @@
 
 namespace dp::scene {
 
+// Image size limits shared by the loaders: per side, and in total (every integrator holds a
+// few double-precision RGB buffers per thread: 2^26 pixels, 8192 x 8192, is already
+// several GB for the gradient-domain ones).
+constexpr int kMaxImageSide = 65536;
+constexpr long long kMaxImagePixels = 1LL << 26;
+inline bool valid_image_size(long long w, long long h) {
+  return w >= 1 && h >= 1 && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= kMaxImagePixels;
+}
+
 struct CameraDesc {
   Vec3 position{0, 0, 0};
   Vec3 look_at{0, 0, -1};

@@ -212,8 +212,9 @@ void Loader::build_camera(const XmlElement& sensor) {
       f.error("unsupported film type '" + t + "' (hdrfilm, ldrfilm, multifilm, tiledhdrfilm)");
     width = f.get_int("width", width);
     height = f.get_int("height", height);
-    if (width < 1 || height < 1 || width > 65536 || height > 65536)
-      f.value_error_at(*film_elem, "film width and height must be between 1 and 65536");
+    if (!valid_image_size(width, height))
+      f.value_error_at(*film_elem,
+                       "film width and height must be between 1 and 65536, at most 67108864 pixels (8192 x 8192) in total");
     for (const char* c : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
       if (f.has(c)) f.error_at(*f.take(c), std::string("film crops ('") + c + "') are not supported");
     for (const char* p : {"file_format", "pixel_format", "component_format", "gamma", "banner", "high_quality_edges",

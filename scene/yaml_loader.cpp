@@ -69,8 +69,8 @@ CameraDesc parse_camera(const Context& ctx, const YAML::Node& m) {
     parse_error(ctx, res, "'resolution' must be a list [width, height]");
   desc.width = get_int(ctx, res[0], "resolution");
   desc.height = get_int(ctx, res[1], "resolution");
-  if (desc.width < 1 || desc.height < 1 || desc.width > 65536 || desc.height > 65536)
-    value_error(ctx, res, "'resolution' must be between 1 and 65536 pixels per side");
+  if (!valid_image_size(desc.width, desc.height))
+    value_error(ctx, res, "'resolution' must be between 1 and 65536 pixels per side, at most 67108864 (8192 x 8192) in total");
   return desc;
 }
 

@@ -53,6 +53,12 @@ for cmd in "stress --quick" "experiment experiments/figures/gbdpt_vs_bdpt.yaml";
   code=$?
   check "$cmd --threads 100000 is a usage error (exit $code)" test $code -ne 0 -a $code -lt 128
 done
+# An image too large to allocate is a file:line error, not std::bad_alloc.
+printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resolution: [65536, 65536]}\nshapes:\n  - {type: sphere, center: [0,0,3], radius: 1}\n' > "$tmp/huge.yaml"
+"$bin" render "$tmp/huge.yaml" --spp 1 --quiet --out "$tmp/h.exr" 2>"$tmp/err"
+code=$?
+check "65536 x 65536 film exits 1 (got $code)" test $code -eq 1
+check "65536 x 65536 film error is one line naming file:line" grep -q "huge.yaml:2:.*resolution" "$tmp/err"
 # A time budget below one pass: whatever was rendered, marked partial.
 "$bin" render scenes/cornell.yaml --time 1e-9 --quiet --out "$tmp/tiny.exr" 2>"$tmp/err"
 check "tiny time budget exits 0" test $? -eq 0
