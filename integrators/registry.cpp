@@ -6,6 +6,7 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gbdpt/gbdpt_integrator.h"
+#include "integrators/gpm/gpm_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
@@ -32,6 +33,7 @@ const std::vector<Entry>& registry() {
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"gbdpt", make<GbdptIntegrator>, "gradient-domain bidirectional path tracing (Manzi et al. 2015), L1/L2 reconstruction"},
+      {"gpm", make<GpmIntegrator>, "gradient-domain photon mapping (G-PM as Sun et al. 2017 implement it), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},
   };

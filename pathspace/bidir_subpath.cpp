@@ -102,6 +102,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     cur.lobe = bs->lobe;
     cur.u_lobe = u_lobe;
     cur.pdf_out = bs->pdf;
+    if (params.stop_after_smooth && !cur.delta) break;
     beta *= bs->weight;
     float q = 1.0f;
     if (int(path.size()) - 1 >= params.rr_depth) {  // segments so far

@@ -17,6 +17,9 @@ namespace dp::pathspace {
 struct SubpathParams {
   int max_vertices = 9;  // camera: max_depth + 1 (z_0 included); light: max_depth
   int rr_depth = 5;
+  // Stop once a vertex has sampled a non-Dirac lobe (that vertex is kept, its successor
+  // is not traced): G-PM needs the camera subpath only up to z_b.
+  bool stop_after_smooth = false;
 };
 
 // z_0 = pinhole, z_1 .. along the primary ray through `raster` (continuous pixels).

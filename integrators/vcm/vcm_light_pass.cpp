@@ -41,7 +41,7 @@ void light_trace(const scene::Scene& scene, const VcmSettings& settings, const V
 }
 
 // Photons of the path just appended to `chunk` (starting at vertex `first`).
-void add_photons(const VcmIteration& it, size_t first, LightChunk& chunk) {
+void add_photons(const VcmIteration& it, size_t first, int64_t path, LightChunk& chunk) {
   const size_t len = chunk.vertices.size() - first;
   for (size_t j = 1; j < len && int(j) < it.max_depth; ++j) {
     const pathspace::BidirVertex& y = chunk.vertices[first + j];
@@ -50,6 +50,7 @@ void add_photons(const VcmIteration& it, size_t first, LightChunk& chunk) {
     ph.mis = pathspace::vcm_photon_mis(&chunk.vertices[first], &chunk.prefixes[first], int(j));
     ph.beta = y.beta;
     ph.depth = int32_t(j);
+    ph.path = uint32_t(path);
     chunk.photons.push_back(ph);
     chunk.photon_pos.push_back(y.sp.p);
   }
@@ -112,7 +113,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
           chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());
           chunk.start.push_back(uint32_t(chunk.vertices.size()));
           chunk.counters.light_vertices += int64_t(path.size());
-          if (photons) add_photons(it, first, chunk);
+          if (photons) add_photons(it, first, p, chunk);
         }
         chunk.counters.splats = int64_t(chunk.splats.size());
         chunk.done = true;

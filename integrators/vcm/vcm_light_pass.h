@@ -18,12 +18,15 @@
 
 namespace dp::integrators {
 
-// A light vertex a merge can use, with everything the merge reads (no access to the
-// stored paths): throughput, MIS record, path depth j.
+// A light vertex a merge can use, with everything VCM's merge reads (no access to the
+// stored paths): throughput, MIS record, path depth j; `path` locates it for the
+// gradient-domain merges, which shift the photon's light subpath (it is light[depth] of
+// LightPathStore::path(path)).
 struct VcmPhoton {
   pathspace::VcmPhotonMis mis;
   Rgb beta = Rgb::Zero();
   int32_t depth = 0;
+  uint32_t path = 0;
 };
 
 struct VcmLightCounters {

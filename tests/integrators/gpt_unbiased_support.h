@@ -87,12 +87,10 @@ inline void add_run(Blocks& out, const core::Image& img, const core::Image* dx, 
   out.mean.push_back(mean_of.mean().sum());
 }
 
-// `set`: integrator settings (key, value), e.g. {{"shift", "manifold"}}.
-inline Blocks stats(const scene::Scene& s, const std::string& integrator, int spp, uint64_t seed0,
-                    const std::vector<std::pair<std::string, std::string>>& set = {}, int max_depth = 5) {
-  integrators::Settings settings;
-  for (const auto& kv : set) settings.set(kv.first, kv.second);
-  auto in = integrators::make_integrator(integrator, settings);
+// kRuns renders of `in` (seeds seed0, seed0 + 1, ...); `gradient`: a gradient-domain
+// integrator (layers direct, dx, dy, recon_l2 as `gpt`).
+inline Blocks stats_of(const scene::Scene& s, integrators::Integrator& in, bool gradient, int spp, uint64_t seed0,
+                       int max_depth = 5) {
   Blocks out;
   for (int r = 0; r < kRuns; ++r) {
     integrators::RenderOptions opt;
@@ -101,15 +99,25 @@ inline Blocks stats(const scene::Scene& s, const std::string& integrator, int sp
     opt.threads = 2;
     opt.max_depth = max_depth;
     opt.quiet = true;
-    const auto res = in->render(s, opt);
+    const auto res = in.render(s, opt);
     // PT: differences of the image (all in `direct`); G-PT: its gradient layers plus the
     // differences of its direct layer.
-    if (integrator == "gpt" || integrator == "gbdpt")
+    if (gradient)
       add_run(out, layer(res, "direct"), &layer(res, "dx"), &layer(res, "dy"), layer(res, "recon_l2"));
     else
       add_run(out, res.layers[0].image, nullptr, nullptr, res.layers[0].image);
   }
   return out;
+}
+
+// `set`: integrator settings (key, value), e.g. {{"shift", "manifold"}}.
+inline Blocks stats(const scene::Scene& s, const std::string& integrator, int spp, uint64_t seed0,
+                    const std::vector<std::pair<std::string, std::string>>& set = {}, int max_depth = 5) {
+  integrators::Settings settings;
+  for (const auto& kv : set) settings.set(kv.first, kv.second);
+  auto in = integrators::make_integrator(integrator, settings);
+  const bool gradient = integrator == "gpt" || integrator == "gbdpt" || integrator == "gpm" || integrator == "gvcm";
+  return stats_of(s, *in, gradient, spp, seed0, max_depth);
 }
 
 // GptSettings as `--integrator gpt` would read them from `set` (GptSettings' member
