@@ -7,6 +7,7 @@
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gbdpt/gbdpt_integrator.h"
 #include "integrators/gpm/gpm_integrator.h"
+#include "integrators/gvcm/gvcm_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
@@ -34,6 +35,7 @@ const std::vector<Entry>& registry() {
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"gbdpt", make<GbdptIntegrator>, "gradient-domain bidirectional path tracing (Manzi et al. 2015), L1/L2 reconstruction"},
       {"gpm", make<GpmIntegrator>, "gradient-domain photon mapping (G-PM as Sun et al. 2017 implement it), L1/L2 reconstruction"},
+      {"gvcm", make<GvcmIntegrator>, "gradient-domain vertex connection and merging (Sun et al. 2017), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},
   };

@@ -5,6 +5,7 @@
 
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
+#include "integrators/vcm/vcm_camera.h"
 #include "pathspace/vcm_mis.h"
 
 namespace dp::integrators {
@@ -38,28 +39,9 @@ void GpmCounters::flush(core::Stats& stats) const {
   else stats.add("gpm.manifold.walks", 0);  // no specular chain before a photon: no walk ran
 }
 
-double footprint_radius(const scene::Scene& scene, const BidirVertex* path, int k) {
-  const scene::PerspectiveCamera& cam = scene.camera();
-  const Vec3 w0 = -path[1].wi;
-  const double pdf = double(cam.pdf_direction(w0));
-  double D = 0;
-  for (int i = 1; i <= k; ++i) D += double((path[i].sp.p - path[i - 1].sp.p).norm());
-  const double cos_k = std::max(0.1, std::abs(double(path[k].sp.ng.dot(path[k].wi))));
-  const double omega = 1.0 / (pdf * double(cam.width()) * double(cam.height()));
-  return pdf > 0 ? D * std::sqrt(omega / (kPiD * cos_k)) : 0.0;
-}
-
 namespace {
 
 constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
-
-// f(z.wi, wo) at a camera vertex (radiance mode, no cosine: the photon carries it); 0 on a
-// sidedness violation (as VCM's merge).
-Rgb eval_at(const BidirVertex& z, const Vec3& wo) {
-  const Vec3 wi = z.sp.shading.to_local(z.wi), w = z.sp.shading.to_local(wo);
-  if (!(z.sp.ng.dot(z.wi) * wi.z() > 0.0f) || !(z.sp.ng.dot(wo) * w.z() > 0.0f)) return Rgb::Zero();
-  return z.bsdf->eval(scene::BsdfContext{z.sp.uv, scene::TransportMode::radiance}, wi, w);
-}
 
 }  // namespace
 
@@ -89,7 +71,7 @@ Rgb GpmTracer::gather(const BidirVertex& z, int k, double r, GpmScratch& sc, Gpm
       ++counters.depth_skipped;
       return;
     }
-    const Rgb f = eval_at(z, ph.mis.wi);
+    const Rgb f = merge_bsdf(z, ph.mis.wi);
     if (is_black(f)) return;
     ++counters.merges;
     const Rgb v = f * ph.beta * z.beta * float(norm);

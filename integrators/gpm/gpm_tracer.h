@@ -26,6 +26,7 @@
 #include "gradients/gradient_buffers.h"
 #include "gradients/merge_shift.h"
 #include "integrators/gpm/gpm_settings.h"
+#include "integrators/kernel_footprint.h"
 #include "integrators/vcm/photon_grid.h"
 #include "integrators/vcm/vcm_light_pass.h"
 
@@ -60,12 +61,6 @@ struct GpmScratch {
   };
   std::vector<Add> adds;
 };
-
-// Radius of the disk at camera vertex z_k whose projection covers one pixel's solid angle:
-// pi r^2 |cos_k| / D^2 = Omega_px, D = the prefix's length z_0 .. z_k (exact through planar
-// mirrors), Omega_px = 1 / (p_dir(w_0) W H) (the camera's whole-image direction density);
-// |cos_k| clamped at 0.1 (a grazing kernel would span the scene).
-double footprint_radius(const scene::Scene& scene, const pathspace::BidirVertex* path, int k);
 
 class GpmTracer {
  public:

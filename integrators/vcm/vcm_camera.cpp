@@ -5,17 +5,11 @@
 
 namespace dp::integrators {
 
-namespace {
-
-// f(z.wi, wo) at a camera vertex (radiance mode, no cosine: the photon density carries
-// it); 0 if either direction violates sidedness.
-Rgb eval_at(const pathspace::BidirVertex& z, const Vec3& wo) {
+Rgb merge_bsdf(const pathspace::BidirVertex& z, const Vec3& wo) {
   const Vec3 wi = z.sp.shading.to_local(z.wi), w = z.sp.shading.to_local(wo);
   if (!(z.sp.ng.dot(z.wi) * wi.z() > 0.0f) || !(z.sp.ng.dot(wo) * w.z() > 0.0f)) return Rgb::Zero();
   return z.bsdf->eval(scene::BsdfContext{z.sp.uv, scene::TransportMode::radiance}, wi, w);
 }
-
-}  // namespace
 
 VcmCameraTracer::VcmCameraTracer(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it,
                                  const LightPathStore& light, const PhotonGrid& grid)
@@ -33,7 +27,7 @@ Rgb VcmCameraTracer::merge(const pathspace::BidirVertex* camera, const pathspace
   m_grid.query(z.sp.p, [&](uint32_t k) {
     const VcmPhoton& ph = m_light.photons[k];
     if (ph.depth + t - 1 > m_it.max_depth) return;  // path depth: j light segments + t - 1 camera segments
-    const Rgb f = eval_at(z, ph.mis.wi);
+    const Rgb f = merge_bsdf(z, ph.mis.wi);
     if (is_black(f)) return;
     ++counters.merges;
     const float w = weighted ? pathspace::vcm_merge_weight(ph.mis, camera, cp, t, m_it.mis) : 1.0f;

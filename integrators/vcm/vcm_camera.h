@@ -15,6 +15,10 @@
 
 namespace dp::integrators {
 
+// f(z.wi, wo) at a camera vertex a photon arrives at along wo (radiance mode, no cosine:
+// the photon's throughput carries it); 0 if either direction violates sidedness.
+Rgb merge_bsdf(const pathspace::BidirVertex& z, const Vec3& wo);
+
 struct VcmCameraCounters {
   int64_t camera_vertices = 0, connections = 0, occluded = 0, merge_queries = 0, merges = 0, nan_dropped = 0;
   VcmCameraCounters& operator+=(const VcmCameraCounters& o) {

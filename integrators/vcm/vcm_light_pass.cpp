@@ -107,7 +107,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
           pathspace::light_subpath(scene, params, rng, path);
           pre.resize(path.size());
           pathspace::vcm_prefixes(path.data(), int(path.size()), false, it.mis, pre.data());
-          if (settings.light_traces()) light_trace(scene, settings, it, path, pre, z0[0], chunk);
+          if (settings.light_traces() && it.light_tracing) light_trace(scene, settings, it, path, pre, z0[0], chunk);
           const size_t first = chunk.vertices.size();
           chunk.vertices.insert(chunk.vertices.end(), path.begin(), path.end());
           chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());

@@ -83,6 +83,7 @@ struct VcmIteration {
   int max_depth = 8;
   pathspace::VcmMisConfig mis;
   float radius = 0;             // merging radius of this iteration
+  bool light_tracing = true;    // false: the light pass does not splat (G-VCM light-traces per pixel)
 };
 
 // Traces `paths` light subpaths into `out` (its chunks; photons listed per chunk when the
