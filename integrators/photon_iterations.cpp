@@ -46,6 +46,7 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
     else light.photon_pos.clear();
     grid.build(light.photon_pos, it.radius);
     if (!light.photon_pos.empty()) light.gather_photons(grid.order());
+    light.photon_pos = {};  // the grid holds its own copy
     const IterationTileFn tile_fn = begin(it, light, grid);
     for (auto& s : iter_stats) s = core::Stats{};
     std::vector<char> tile_done(size_t(tiles), 0);
@@ -60,6 +61,9 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
         },
         options.stop);
     const bool complete = std::find(tile_done.begin(), tile_done.end(), 0) == tile_done.end();
+    const int64_t photons = int64_t(light.photons.size());
+    light.release_photons();  // not held through the next light pass
+    grid.release();
     for (size_t t = 0; t < buffers.size(); ++t) {
       if (complete) {
         out.passes.total.merge(buffers[t]);
@@ -72,7 +76,7 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
       break;
     }
     out.light += lc;
-    out.photons += int64_t(light.photon_pos.size());
+    out.photons += photons;
     out.last_radius = it.radius;
     ++done;
     if (timed) progress.set_fraction(std::min(1.0, timer.seconds() / options.time_budget));

@@ -36,4 +36,10 @@ void PhotonGrid::build(const std::vector<Vec3>& points, float radius) {
   }
 }
 
+void PhotonGrid::release() {
+  m_points = {};
+  m_index = {};
+  m_start = {};
+}
+
 }  // namespace dp::integrators

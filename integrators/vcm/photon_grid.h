@@ -20,6 +20,7 @@ class PhotonGrid {
  public:
   // Indexes points[0 .. n-1] for queries of radius r > 0 (points are copied).
   void build(const std::vector<Vec3>& points, float radius);
+  void release();  // frees every array (empty grid)
   bool empty() const { return m_points.empty(); }
   float radius() const { return m_radius; }
   // order()[k] = the input index of the point in slot k.

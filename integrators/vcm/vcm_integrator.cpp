@@ -79,6 +79,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
     if (m_settings.merges() && !light.photon_pos.empty()) {
       grid.build(light.photon_pos, it.radius);
       light.gather_photons(grid.order());
+      light.photon_pos = {};  // the grid holds its own copy
       ++totals.grid_builds;
     } else {
       grid.build({}, it.radius);
@@ -117,7 +118,9 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
     for (size_t i = 0; i < total.size(); ++i) total[i] += iter[i];
     for (const VcmCameraCounters& c : tile_counters) totals.camera += c;
     totals.light += lc;
-    totals.photons += m_settings.merges() ? int64_t(light.photon_pos.size()) : 0;
+    totals.photons += m_settings.merges() ? int64_t(light.photons.size()) : 0;
+    light.release_photons();
+    grid.release();
     radius = it.radius;
     ++done;
     if (timed) progress.set_fraction(std::min(1.0, timer.seconds() / options.time_budget));

@@ -58,9 +58,26 @@ void add_photons(const VcmIteration& it, size_t first, int64_t path, LightChunk&
 
 }  // namespace
 
+namespace {
+// Empties v, keeping capacity for about 1/8 more than it held: chunk sizes vary by a few
+// percent between iterations, and a vector grown by doubling would otherwise keep up to
+// twice what it needs (the light store dominates VCM's memory: issue 13's budget).
+template <class T>
+void clear_with_headroom(std::vector<T>& v) {
+  const size_t want = v.size() + v.size() / 8;
+  if (v.capacity() > want + want / 4) {
+    std::vector<T> fresh;
+    fresh.reserve(want);
+    v.swap(fresh);
+  } else {
+    v.clear();
+  }
+}
+}  // namespace
+
 void LightChunk::clear() {
-  vertices.clear();
-  prefixes.clear();
+  clear_with_headroom(vertices);
+  clear_with_headroom(prefixes);
   start.clear();
   photons.clear();
   photon_pos.clear();
@@ -69,9 +86,20 @@ void LightChunk::clear() {
   done = false;
 }
 
+void LightPathStore::release_photons() {
+  photons = {};
+  photon_pos = {};
+}
+
 void LightPathStore::gather_positions() {
   photon_pos.clear();
-  for (const LightChunk& c : chunks) photon_pos.insert(photon_pos.end(), c.photon_pos.begin(), c.photon_pos.end());
+  size_t n = 0;
+  for (const LightChunk& c : chunks) n += c.photon_pos.size();
+  photon_pos.reserve(n);
+  for (LightChunk& c : chunks) {
+    photon_pos.insert(photon_pos.end(), c.photon_pos.begin(), c.photon_pos.end());
+    c.photon_pos = {};  // one copy at a time
+  }
 }
 
 void LightPathStore::gather_photons(const std::vector<uint32_t>& order) {
@@ -81,6 +109,7 @@ void LightPathStore::gather_photons(const std::vector<uint32_t>& order) {
     for (const VcmPhoton& ph : c.photons) input.push_back(&ph);
   photons.resize(order.size());
   for (size_t k = 0; k < order.size(); ++k) photons[k] = *input[order[k]];
+  for (LightChunk& c : chunks) c.photons = {};  // the grid-ordered copy is the one kept
 }
 
 bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it, int64_t paths,
@@ -93,32 +122,51 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
   core::Rng unused;
   pathspace::camera_subpath(scene, Vec2(0, 0), pathspace::SubpathParams{1, settings.rr_depth}, unused, z0);
   const bool photons = settings.merges();
+  // The first pass sizes the chunks from chunk 0, traced alone (vectors grown by doubling
+  // would hold up to twice what they need; chunk sizes differ by a few percent).
+  const bool first_pass = chunks > 0 && out.chunks[0].vertices.capacity() == 0;
+  size_t vertex_hint = 0, photon_hint = 0;
+  auto trace_chunk = [&](int64_t c) {
+    LightChunk& chunk = out.chunks[size_t(c)];
+    chunk.clear();
+    if (chunk.vertices.capacity() < vertex_hint) {
+      chunk.vertices.reserve(vertex_hint);
+      chunk.prefixes.reserve(vertex_hint);
+    }
+    if (photons && chunk.photons.capacity() < photon_hint) {
+      chunk.photons.reserve(photon_hint);
+      chunk.photon_pos.reserve(photon_hint);
+    }
+    core::Rng rng(it.seed, (uint64_t(it.index) << 32) | uint64_t(c));
+    std::vector<pathspace::BidirVertex> path;
+    std::vector<pathspace::VcmPrefix> pre;
+    const int64_t end = std::min(paths, (c + 1) * kLightChunk);
+    chunk.start.push_back(0);
+    for (int64_t p = c * kLightChunk; p < end; ++p) {
+      pathspace::light_subpath(scene, params, rng, path);
+      pre.resize(path.size());
+      pathspace::vcm_prefixes(path.data(), int(path.size()), false, it.mis, pre.data());
+      if (settings.light_traces() && it.light_tracing) light_trace(scene, settings, it, path, pre, z0[0], chunk);
+      const size_t first = chunk.vertices.size();
+      chunk.vertices.insert(chunk.vertices.end(), path.begin(), path.end());
+      chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());
+      chunk.start.push_back(uint32_t(chunk.vertices.size()));
+      chunk.counters.light_vertices += int64_t(path.size());
+      if (photons) add_photons(it, first, p, chunk);
+    }
+    chunk.counters.splats = int64_t(chunk.splats.size());
+    chunk.done = true;
+  };
+  int64_t pilot = 0;
+  if (first_pass) {
+    trace_chunk(0);
+    const size_t v = out.chunks[0].vertices.size(), ph = out.chunks[0].photons.size();
+    vertex_hint = v + v / 8;
+    photon_hint = ph + ph / 8;
+    pilot = 1;
+  }
   core::parallel_for(
-      chunks, threads,
-      [&](int64_t c, int) {
-        LightChunk& chunk = out.chunks[size_t(c)];
-        chunk.clear();
-        core::Rng rng(it.seed, (uint64_t(it.index) << 32) | uint64_t(c));
-        std::vector<pathspace::BidirVertex> path;
-        std::vector<pathspace::VcmPrefix> pre;
-        const int64_t end = std::min(paths, (c + 1) * kLightChunk);
-        chunk.start.push_back(0);
-        for (int64_t p = c * kLightChunk; p < end; ++p) {
-          pathspace::light_subpath(scene, params, rng, path);
-          pre.resize(path.size());
-          pathspace::vcm_prefixes(path.data(), int(path.size()), false, it.mis, pre.data());
-          if (settings.light_traces() && it.light_tracing) light_trace(scene, settings, it, path, pre, z0[0], chunk);
-          const size_t first = chunk.vertices.size();
-          chunk.vertices.insert(chunk.vertices.end(), path.begin(), path.end());
-          chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());
-          chunk.start.push_back(uint32_t(chunk.vertices.size()));
-          chunk.counters.light_vertices += int64_t(path.size());
-          if (photons) add_photons(it, first, p, chunk);
-        }
-        chunk.counters.splats = int64_t(chunk.splats.size());
-        chunk.done = true;
-      },
-      stop);
+      chunks - pilot, threads, [&](int64_t c, int) { trace_chunk(c + pilot); }, stop);
   for (const LightChunk& c : out.chunks) {
     if (!c.done) return false;
     counters += c.counters;

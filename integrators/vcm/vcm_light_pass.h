@@ -71,10 +71,15 @@ struct LightPathStore {
     *length = int(c.start[i + 1] - c.start[i]);
     return c.vertices.data() + c.start[i];
   }
-  // Concatenates the chunks' photon positions (chunk order) into photon_pos.
+  // Concatenates the chunks' photon positions (chunk order) into photon_pos (the chunks'
+  // copies are freed).
   void gather_positions();
-  // Fills `photons` in the grid's slot order: photons[k] = input photon order[k].
+  // Fills `photons` in the grid's slot order: photons[k] = input photon order[k] (the
+  // chunks' copies are freed).
   void gather_photons(const std::vector<uint32_t>& order);
+  // Frees `photons` and `photon_pos` (between iterations: the next light pass's peak
+  // memory does not hold the last iteration's photons).
+  void release_photons();
 };
 
 struct VcmIteration {
