@@ -18,7 +18,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const double r0 = double(m_settings.radius_scale) *
                     (footprint > 0 ? footprint : 0.003 * double(std::max(scene.scene_radius(), 1e-3f)));
   VcmSettings light_settings;  // VCM's light pass: every vertex stored, photons listed
-  light_settings.mode = VcmMode::vcm;
+  light_settings.mode = m_settings.merging ? VcmMode::vcm : VcmMode::bpt;  // bpt: no photons listed
   light_settings.rr_depth = m_settings.rr_depth;
   std::vector<GvcmScratch> scratch(static_cast<size_t>(threads));
   core::Timer timer;
@@ -32,7 +32,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
         it.radius = float(r0 * std::pow(double(i + 1), 0.5 * (double(m_settings.radius_alpha) - 1.0)));
         it.light_tracing = false;  // light tracing per pixel in the camera pass (its shift needs the pixel)
         it.mis.heuristic = m_settings.heuristic;
-        it.mis.eta = float(kPiD * double(it.radius) * double(it.radius) * double(pixels));
+        it.mis.eta = m_settings.merging ? float(kPiD * double(it.radius) * double(it.radius) * double(pixels)) : 0.0f;
         return it;
       },
       [&](const VcmIteration& it, const LightPathStore& light, const PhotonGrid& grid) -> IterationTileFn {

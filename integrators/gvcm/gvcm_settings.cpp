@@ -8,6 +8,11 @@ namespace dp::integrators {
 
 GvcmSettings GvcmSettings::read(Settings& s) {
   GvcmSettings g;
+  const std::string mode = s.get_string("mode", "vcm",
+                                        "strategies: vcm (connections and merges) or bpt (connections only, VCM's "
+                                        "loop without photons: no merging pass runs)",
+                                        {"vcm", "bpt"});
+  g.merging = mode == "vcm";
   g.radius_scale = float(s.get_double("radius_scale", g.radius_scale,
                                       "merging radius in pixel footprints: the median over the image of the disk at "
                                       "the first connectable camera vertex whose projection covers one pixel "

@@ -19,6 +19,7 @@ struct GvcmFaults {
 };
 
 struct GvcmSettings {
+  bool merging = true;        // mode: vcm (connections + merges) | bpt (connections only: no photons, no grid)
   float radius_scale = 1.0f;  // r_1 = radius_scale x the median pixel footprint at z_b (Sec. 6)
   float radius_alpha = 0.9f;  // per-iteration reduction r_i = r_1 i^((alpha - 1) / 2) (paper: 0.9)
   int rr_depth = 5;           // Russian roulette on each subpath after this many segments
