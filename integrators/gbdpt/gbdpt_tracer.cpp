@@ -45,7 +45,8 @@ GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& setting
 }
 
 namespace {
-constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+constexpr const int* kDx = kPairDx;
+constexpr const int* kDy = kPairDy;
 }
 
 void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradients::GradientBuffers& buf,
@@ -59,7 +60,8 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
   pathspace::camera_subpath(m_scene, raster, cam_params, rng, sc.camera);
   pathspace::light_subpath(m_scene, light_params, rng, sc.light);
   sc.terms.clear();
-  sc.adds.clear();
+  sc.splats.clear();
+  sc.splats.pair_primal = m_pair_primal;
   const int nc = int(sc.camera.size()), nl = int(sc.light.size());
   for (int t = 1; t <= nc; ++t)
     for (int s = 0; s <= nl; ++s) {
@@ -86,7 +88,7 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
         term.px = std::min(int(c.raster.x()), w_img - 1);
         term.py = std::min(int(c.raster.y()), h_img - 1);
       }
-      if (primal_weight) sc.adds.push_back({term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>()});
+      if (primal_weight) sc.splats.add(term.px, term.py, direct ? 1 : 0, (c.value * w).cast<double>());
       if (direct) {
         ++counters.direct;
         continue;
@@ -98,19 +100,7 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
     }
   if (!sc.terms.empty())
     for (int nb = 0; nb < 4; ++nb) offsets(nb, sc, w_img, h_img, counters);
-  for (const auto& a : sc.adds)
-    if (!a.v.isFinite().all()) {
-      ++counters.nan_dropped;  // the whole sample is dropped, never splatted
-      buf.add_samples(px, py, 1);
-      return;
-    }
-  for (const auto& a : sc.adds) {
-    if (a.layer == 0) buf.add_primal(a.x, a.y, a.v);
-    else if (a.layer == 1) buf.add_direct(a.x, a.y, a.v);
-    else if (a.layer == 2) buf.add_dx(a.x, a.y, a.v);
-    else buf.add_dy(a.x, a.y, a.v);
-  }
-  buf.add_samples(px, py, 1);
+  if (!sc.splats.flush(buf, px, py)) ++counters.nan_dropped;  // the whole sample is dropped, never splatted
 }
 
 void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters& counters) const {
@@ -121,7 +111,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
     const Rgbd base = term.value.cast<double>();
     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
       ++counters.outside_image;  // no pair: the base pixel keeps its own estimate
-      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w_bal * base});
+      sc.splats.unpaired(term.px, term.py, base, term.w_bal);
       continue;
     }
     Rgb off = Rgb::Zero();
@@ -163,25 +153,15 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         counters.light_chain += sc.lt.specular_chain;
       }
     }
-    Rgbd g;
     if (!is_black(off) && w_off > 0.0 && ratio > 0.0) {
       const double wgt = m_settings.faults.mis_without_offset ? term.w_bal : 1.0 / (1.0 / term.w_bal + ratio / w_off);
-      g = wgt * (off.cast<double>() - base);
+      const Rgbd o = off.cast<double>();
+      sc.splats.pair(nb, term.px, term.py, base, &o, wgt, term.w_bal);
       ++counters.pairs_shifted;
-      if (m_pair_primal) {  // the pair's estimates of both pixels, a quarter per neighbour
-        sc.adds.push_back({term.px, term.py, 0, 0.25 * wgt * base});
-        sc.adds.push_back({qx, qy, 0, 0.25 * wgt * off.cast<double>()});
-      }
     } else {
-      g = -term.w_bal * base;  // T_0 fallback
+      sc.splats.pair(nb, term.px, term.py, base, nullptr, 0.0, term.w_bal);  // T_0 fallback
       ++counters.pairs_fallback;
-      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w_bal * base});
     }
-    // g estimates I_j - I_i; the buffers hold forward differences.
-    if (kDx[nb] == 1) sc.adds.push_back({term.px, term.py, 2, g});
-    else if (kDx[nb] == -1) sc.adds.push_back({qx, qy, 2, -g});
-    else if (kDy[nb] == 1) sc.adds.push_back({term.px, term.py, 3, g});
-    else sc.adds.push_back({qx, qy, 3, -g});
   }
 }
 

@@ -28,6 +28,7 @@
 #include "core/stats.h"
 #include "gradients/bidir_shift.h"
 #include "gradients/gradient_buffers.h"
+#include "integrators/pair_splats.h"
 #include "integrators/gbdpt/gbdpt_settings.h"
 #include "pathspace/bidir_mis.h"
 
@@ -61,11 +62,7 @@ struct GbdptScratch {
   std::vector<GbdptTerm> terms;
   gradients::CameraSubpathShift shift;
   gradients::LightTracingShift lt;
-  struct Add {
-    int x, y, layer;  // 0 primal, 1 direct, 2 dx, 3 dy
-    Rgbd v;
-  };
-  std::vector<Add> adds;
+  PairSplats splats;  // what the sample adds (flushed whole or dropped)
 };
 
 class GbdptTracer {

@@ -41,7 +41,8 @@ void GpmCounters::flush(core::Stats& stats) const {
 
 namespace {
 
-constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+constexpr const int* kDx = kPairDx;
+constexpr const int* kDy = kPairDy;
 
 }  // namespace
 
@@ -89,7 +90,8 @@ void GpmTracer::sample(int px, int py, core::Rng& rng, GpmScratch& sc, gradients
   pathspace::SubpathParams params{m_max_depth + 1, m_settings.rr_depth};
   params.stop_after_smooth = true;
   pathspace::camera_subpath(m_scene, raster, params, rng, sc.camera);
-  sc.adds.clear();
+  sc.splats.clear();
+  sc.splats.pair_primal = m_pair_primal;
   sc.terms.clear();
   const int nc = int(sc.camera.size());
   const pathspace::MisConfig unweighted{.unweighted = true};
@@ -99,7 +101,7 @@ void GpmTracer::sample(int px, int py, core::Rng& rng, GpmScratch& sc, gradients
     pathspace::Connection c;
     // Emission through a Dirac-only prefix (z_k's own emission; no merge samples it).
     if (z.emitter && pathspace::connect(m_scene, nullptr, 0, sc.camera.data(), k + 1, unweighted, c)) {
-      sc.adds.push_back({px, py, 1, c.value.cast<double>()});
+      sc.splats.add(px, py, 1, c.value.cast<double>());
       ++counters.direct;
     }
     if (!z.delta) {
@@ -110,7 +112,7 @@ void GpmTracer::sample(int px, int py, core::Rng& rng, GpmScratch& sc, gradients
     if (pathspace::vcm_mergeable(z, false) && k < m_max_depth && !m_grid.empty()) {
       const Rgb v = gather(z, k, m_radius_factor * footprint_radius(m_scene, sc.camera.data(), k), sc, counters);
       counters.unshifted_merges += int64_t(sc.terms.size());
-      if (!is_black(v)) sc.adds.push_back({px, py, 1, v.cast<double>()});
+      if (!is_black(v)) sc.splats.add(px, py, 1, v.cast<double>());
     }
   }
   sc.terms.clear();
@@ -120,23 +122,11 @@ void GpmTracer::sample(int px, int py, core::Rng& rng, GpmScratch& sc, gradients
   } else {
     r = m_radius_factor * footprint_radius(m_scene, sc.camera.data(), b);
     const Rgb base = r > 0 ? gather(sc.camera[size_t(b)], b, r, sc, counters) : Rgb::Zero();
-    if (!m_pair_primal && !is_black(base)) sc.adds.push_back({px, py, 0, base.cast<double>()});
+    if (!m_pair_primal && !is_black(base)) sc.splats.add(px, py, 0, base.cast<double>());
   }
   if (!sc.terms.empty())
     for (int nb = 0; nb < 4; ++nb) offsets(nb, px, py, raster, b, r, sc, w_img, h_img, counters);
-  for (const auto& a : sc.adds)
-    if (!a.v.isFinite().all()) {
-      ++counters.nan_dropped;  // the whole sample is dropped, never splatted
-      buf.add_samples(px, py, 1);
-      return;
-    }
-  for (const auto& a : sc.adds) {
-    if (a.layer == 0) buf.add_primal(a.x, a.y, a.v);
-    else if (a.layer == 1) buf.add_direct(a.x, a.y, a.v);
-    else if (a.layer == 2) buf.add_dx(a.x, a.y, a.v);
-    else buf.add_dy(a.x, a.y, a.v);
-  }
-  buf.add_samples(px, py, 1);
+  if (!sc.splats.flush(buf, px, py)) ++counters.nan_dropped;  // the whole sample is dropped, never splatted
 }
 
 void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, double r, GpmScratch& sc, int w, int h,
@@ -144,8 +134,7 @@ void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, doubl
   const int qx = px + kDx[nb], qy = py + kDy[nb];
   if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
     counters.outside_image += int64_t(sc.terms.size());  // no pair: the base pixel keeps its own estimate
-    if (m_pair_primal)
-      for (const GpmTerm& t : sc.terms) sc.adds.push_back({px, py, 0, 0.25 * t.value.cast<double>()});
+    for (const GpmTerm& t : sc.terms) sc.splats.unpaired(px, py, t.value.cast<double>(), 1.0);
     return;
   }
   gradients::shift_camera_subpath(m_scene, sc.camera, raster, Vec2(float(kDx[nb]), float(kDy[nb])), m_shift, sc.shift);
@@ -153,7 +142,7 @@ void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, doubl
   if (sc.shift.status != ShiftStatus::ok) ++counters.camera_fail[size_t(sc.shift.status)];
   const bool camera_ok = sc.shift.alive > b && sc.shift.b == b;
   const double r_off = camera_ok ? m_radius_factor * footprint_radius(m_scene, sc.shift.path.data(), b) : 0.0;
-  const double beta = m_settings.power ? 2.0 : 1.0;
+  const double beta = m_settings.beta();
   const double norm = m_inv_paths / (kPiD * r * r);
   for (const GpmTerm& t : sc.terms) {
     const Rgbd base = t.value.cast<double>();
@@ -178,25 +167,14 @@ void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, doubl
         counters.merge_chain += ms.specular_chain;
       }
     }
-    Rgbd g;
     if (!off.isZero() && R > 0 && std::isfinite(R)) {
       const double wgt = m_settings.faults.mis_without_offset ? 1.0 : 1.0 / (1.0 + std::pow(R, beta));
-      g = wgt * (off - base);
+      sc.splats.pair(nb, px, py, base, &off, wgt, 1.0);
       ++counters.pairs_shifted;
-      if (m_pair_primal) {  // the pair's estimates of both pixels, a quarter per neighbour
-        sc.adds.push_back({px, py, 0, 0.25 * wgt * base});
-        sc.adds.push_back({qx, qy, 0, 0.25 * wgt * off});
-      }
     } else {
-      g = -base;  // T_0 fallback
+      sc.splats.pair(nb, px, py, base, nullptr, 0.0, 1.0);  // T_0 fallback
       ++counters.pairs_fallback;
-      if (m_pair_primal) sc.adds.push_back({px, py, 0, 0.25 * base});
     }
-    // g estimates I_j - I_i; the buffers hold forward differences.
-    if (kDx[nb] == 1) sc.adds.push_back({px, py, 2, g});
-    else if (kDx[nb] == -1) sc.adds.push_back({qx, qy, 2, -g});
-    else if (kDy[nb] == 1) sc.adds.push_back({px, py, 3, g});
-    else sc.adds.push_back({qx, qy, 3, -g});
   }
 }
 

@@ -24,6 +24,7 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "gradients/gradient_buffers.h"
+#include "integrators/pair_splats.h"
 #include "gradients/merge_shift.h"
 #include "integrators/gpm/gpm_settings.h"
 #include "integrators/kernel_footprint.h"
@@ -55,11 +56,7 @@ struct GpmScratch {
   std::vector<GpmTerm> terms;
   gradients::CameraSubpathShift shift;
   gradients::MergeShift merge;
-  struct Add {
-    int x, y, layer;  // 0 primal, 1 direct, 2 dx, 3 dy
-    Rgbd v;
-  };
-  std::vector<Add> adds;
+  PairSplats splats;  // what the sample adds (flushed whole or dropped)
 };
 
 class GpmTracer {

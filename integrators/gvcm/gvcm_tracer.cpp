@@ -49,7 +49,8 @@ void GvcmCounters::flush(core::Stats& stats) const {
 }
 
 namespace {
-constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+constexpr const int* kDx = kPairDx;
+constexpr const int* kDy = kPairDy;
 }  // namespace
 
 GvcmTracer::GvcmTracer(const scene::Scene& scene, const GvcmSettings& settings, const VcmIteration& it,
@@ -76,24 +77,13 @@ void GvcmTracer::sample(int px, int py, core::Rng& rng, GvcmScratch& sc, gradien
   int nl = 0;
   const BidirVertex* light = m_light.path(int64_t(py) * w_img + px, &lp, &nl);
   sc.terms.clear();
-  sc.adds.clear();
+  sc.splats.clear();
+  sc.splats.pair_primal = m_pair_primal;
   connections(px, py, light, lp, nl, sc, w_img, h_img, counters);
   if (m_it.mis.eta > 0.0f && !m_grid.empty()) merges(px, py, sc, counters);
   if (!sc.terms.empty())
     for (int nb = 0; nb < 4; ++nb) offsets(nb, light, lp, sc, w_img, h_img, counters);
-  for (const auto& a : sc.adds)
-    if (!a.v.isFinite().all()) {
-      ++counters.nan_dropped;  // the whole sample is dropped, never splatted
-      buf.add_samples(px, py, 1);
-      return;
-    }
-  for (const auto& a : sc.adds) {
-    if (a.layer == 0) buf.add_primal(a.x, a.y, a.v);
-    else if (a.layer == 1) buf.add_direct(a.x, a.y, a.v);
-    else if (a.layer == 2) buf.add_dx(a.x, a.y, a.v);
-    else buf.add_dy(a.x, a.y, a.v);
-  }
-  buf.add_samples(px, py, 1);
+  if (!sc.splats.flush(buf, px, py)) ++counters.nan_dropped;  // the whole sample is dropped, never splatted
 }
 
 void GvcmTracer::connections(int px, int py, const BidirVertex* light, const VcmPrefix* lp, int nl, GvcmScratch& sc,
@@ -124,11 +114,11 @@ void GvcmTracer::connections(int px, int py, const BidirVertex* light, const Vcm
         term.py = std::min(int(c.raster.y()), h - 1);
       }
       if (s + t == 2) {  // one segment: a light seen directly, never shifted
-        sc.adds.push_back({term.px, term.py, 1, (c.value * wv).cast<double>()});
+        sc.splats.add(term.px, term.py, 1, (c.value * wv).cast<double>());
         ++counters.direct;
         continue;
       }
-      if (!m_pair_primal) sc.adds.push_back({term.px, term.py, 0, (c.value * wv).cast<double>()});
+      if (!m_pair_primal) sc.splats.add(term.px, term.py, 0, (c.value * wv).cast<double>());
       sc.terms.push_back(term);
     }
 }
@@ -155,7 +145,7 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
       term.photon = slot;
       term.value = f * ph.beta * z.beta * m_merge_norm;
       term.w = double(wv);
-      if (!m_pair_primal) sc.adds.push_back({px, py, 0, (term.value * wv).cast<double>()});
+      if (!m_pair_primal) sc.splats.add(px, py, 0, (term.value * wv).cast<double>());
       sc.terms.push_back(term);
     });
   }
@@ -164,14 +154,14 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
 void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, GvcmScratch& sc, int w, int h,
                          GvcmCounters& counters) const {
   const Vec2 offset(float(kDx[nb]), float(kDy[nb]));
-  const double beta = m_it.mis.heuristic == pathspace::MisHeuristic::power ? 2.0 : 1.0;
+  const double beta = m_settings.beta();
   bool camera_shifted = false;
   for (const GvcmTerm& term : sc.terms) {
     const int qx = term.px + kDx[nb], qy = term.py + kDy[nb];
     const Rgbd base = term.value.cast<double>();
     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
       ++counters.outside_image;  // no pair: the base pixel keeps its own estimate
-      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w * base});
+      sc.splats.unpaired(term.px, term.py, base, term.w);
       continue;
     }
     if ((term.merge || term.t >= 2) && !camera_shifted) {
@@ -206,28 +196,16 @@ void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, 
     const GvcmOffsetContext ctx{m_scene, m_it.mis, m_merge_norm, m_shift, sc.camera, sc.shift, sc.off_cp};
     GvcmOffset o;
     const bool ok = gvcm_offset(ctx, st, offset, sc.lt, sc.merge, sc.off_lp, o, counters);
-    const Rgb off = o.value;
-    const double w_off = o.w, R = o.R;
-    Rgbd g;
-    if (ok && !is_black(off) && w_off > 0.0 && R > 0.0 && std::isfinite(R)) {
+    if (ok && !is_black(o.value) && o.w > 0.0 && o.R > 0.0 && std::isfinite(o.R)) {
       const double wgt =
-          m_settings.faults.mis_without_offset ? term.w : 1.0 / (1.0 / term.w + std::pow(R, beta) / w_off);
-      g = wgt * (off.cast<double>() - base);
+          m_settings.faults.mis_without_offset ? term.w : 1.0 / (1.0 / term.w + std::pow(o.R, beta) / o.w);
+      const Rgbd off = o.value.cast<double>();
+      sc.splats.pair(nb, term.px, term.py, base, &off, wgt, term.w);
       ++counters.pairs_shifted;
-      if (m_pair_primal) {  // the pair's estimates of both pixels, a quarter per neighbour
-        sc.adds.push_back({term.px, term.py, 0, 0.25 * wgt * base});
-        sc.adds.push_back({qx, qy, 0, 0.25 * wgt * off.cast<double>()});
-      }
     } else {
-      g = -term.w * base;  // T_0 fallback
+      sc.splats.pair(nb, term.px, term.py, base, nullptr, 0.0, term.w);  // T_0 fallback
       ++counters.pairs_fallback;
-      if (m_pair_primal) sc.adds.push_back({term.px, term.py, 0, 0.25 * term.w * base});
     }
-    // g estimates I_j - I_i; the buffers hold forward differences.
-    if (kDx[nb] == 1) sc.adds.push_back({term.px, term.py, 2, g});
-    else if (kDx[nb] == -1) sc.adds.push_back({qx, qy, 2, -g});
-    else if (kDy[nb] == 1) sc.adds.push_back({term.px, term.py, 3, g});
-    else sc.adds.push_back({qx, qy, 3, -g});
   }
 }
 

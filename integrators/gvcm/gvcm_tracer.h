@@ -27,6 +27,7 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "gradients/gradient_buffers.h"
+#include "integrators/pair_splats.h"
 #include "gradients/merge_shift.h"
 #include "integrators/gvcm/gvcm_settings.h"
 #include "integrators/vcm/photon_grid.h"
@@ -66,11 +67,7 @@ struct GvcmScratch {
   gradients::CameraSubpathShift shift;
   gradients::LightTracingShift lt;
   gradients::MergeShift merge;
-  struct Add {
-    int x, y, layer;  // 0 primal, 1 direct, 2 dx, 3 dy
-    Rgbd v;
-  };
-  std::vector<Add> adds;
+  PairSplats splats;  // what the sample adds (flushed whole or dropped)
 };
 
 class GvcmTracer {

@@ -77,7 +77,7 @@ FurnaceResult furnace(const scene::Scene& s, const integrators::GpmSettings& set
       }
       const double eps = furnace_roundoff_bound(d_min);
       int g = 0;
-      for (const auto& a : sc.adds) {
+      for (const auto& a : sc.splats.adds) {
         if (a.layer < 2) continue;
         const double base = double(sc.terms[size_t(g % nt)].value.maxCoeff());
         const double rel = double(a.v.cwiseAbs().maxCoeff()) / base;

@@ -82,7 +82,7 @@ FurnaceResult furnace(const scene::Scene& s, const integrators::GvcmSettings& se
         }
         d_min *= 0.5;
         double sum_g = 0;
-        for (const auto& a : sc.adds)
+        for (const auto& a : sc.splats.adds)
           if (a.layer >= 2) sum_g += a.v.cwiseAbs().maxCoeff();
         ++out.samples;
         out.worst = std::max(out.worst, sum_g / (4.0 * furnace_roundoff_bound(d_min) * sum_base));
