@@ -42,7 +42,7 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
       out.passes.partial = true;
       break;
     }
-    if (light_settings.merges()) light.gather_positions();
+    if (light_settings.merges()) light.collect_photons(threads);
     else light.photon_pos.clear();
     grid.build(light.photon_pos, it.radius);
     if (!light.photon_pos.empty()) light.gather_photons(grid.order());

@@ -75,7 +75,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
       interrupted = true;
       break;
     }
-    if (m_settings.merges()) light.gather_positions();
+    if (m_settings.merges()) light.collect_photons(threads);
     if (m_settings.merges() && !light.photon_pos.empty()) {
       grid.build(light.photon_pos, it.radius);
       light.gather_photons(grid.order());

@@ -40,20 +40,10 @@ void light_trace(const scene::Scene& scene, const VcmSettings& settings, const V
   }
 }
 
-// Photons of the path just appended to `chunk` (starting at vertex `first`).
-void add_photons(const VcmIteration& it, size_t first, int64_t path, LightChunk& chunk) {
-  const size_t len = chunk.vertices.size() - first;
-  for (size_t j = 1; j < len && int(j) < it.max_depth; ++j) {
-    const pathspace::BidirVertex& y = chunk.vertices[first + j];
-    if (!pathspace::vcm_mergeable(y, false)) continue;
-    VcmPhoton ph;
-    ph.mis = pathspace::vcm_photon_mis(&chunk.vertices[first], &chunk.prefixes[first], int(j));
-    ph.beta = y.beta;
-    ph.depth = int32_t(j);
-    ph.path = uint32_t(path);
-    chunk.photons.push_back(ph);
-    chunk.photon_pos.push_back(y.sp.p);
-  }
+// Is light[j] of a path a photon: y_j, 1 <= j < max_depth, a surface whose BSDF has a
+// non-Dirac part (pathspace::vcm_mergeable).
+bool is_photon(const pathspace::BidirVertex& y, size_t j, int max_depth) {
+  return j >= 1 && int(j) < max_depth && pathspace::vcm_mergeable(y, false);
 }
 
 }  // namespace
@@ -79,8 +69,7 @@ void LightChunk::clear() {
   clear_with_headroom(vertices);
   clear_with_headroom(prefixes);
   start.clear();
-  photons.clear();
-  photon_pos.clear();
+  photon_count = 0;
   splats.clear();
   counters = VcmLightCounters{};
   done = false;
@@ -91,25 +80,45 @@ void LightPathStore::release_photons() {
   photon_pos = {};
 }
 
-void LightPathStore::gather_positions() {
-  photon_pos.clear();
-  size_t n = 0;
-  for (const LightChunk& c : chunks) n += c.photon_pos.size();
-  photon_pos.reserve(n);
-  for (LightChunk& c : chunks) {
-    photon_pos.insert(photon_pos.end(), c.photon_pos.begin(), c.photon_pos.end());
-    c.photon_pos = {};  // one copy at a time
-  }
+void LightPathStore::collect_photons(int threads) {
+  std::vector<size_t> offset(chunks.size() + 1, 0);
+  for (size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + chunks[c].photon_count;
+  photons.resize(offset.back());
+  photon_pos.resize(offset.back());
+  core::parallel_for(int64_t(chunks.size()), threads, [&](int64_t ci, int) {
+    const LightChunk& c = chunks[size_t(ci)];
+    size_t k = offset[size_t(ci)];
+    for (size_t i = 0; i + 1 < c.start.size(); ++i)
+      for (size_t j = 1; j < c.start[i + 1] - c.start[i]; ++j) {
+        const size_t v = c.start[i] + j;
+        if (!is_photon(c.vertices[v], j, max_depth)) continue;
+        VcmPhoton& ph = photons[k];
+        ph.mis = pathspace::vcm_photon_mis(&c.vertices[c.start[i]], &c.prefixes[c.start[i]], int(j));
+        ph.beta = c.vertices[v].beta;
+        ph.depth = int32_t(j);
+        ph.path = uint32_t(ci * kLightChunk + int64_t(i));
+        photon_pos[k++] = c.vertices[v].sp.p;
+      }
+  });
 }
 
 void LightPathStore::gather_photons(const std::vector<uint32_t>& order) {
-  std::vector<const VcmPhoton*> input;
-  input.reserve(order.size());
-  for (const LightChunk& c : chunks)
-    for (const VcmPhoton& ph : c.photons) input.push_back(&ph);
-  photons.resize(order.size());
-  for (size_t k = 0; k < order.size(); ++k) photons[k] = *input[order[k]];
-  for (LightChunk& c : chunks) c.photons = {};  // the grid-ordered copy is the one kept
+  // In place, cycle by cycle: photons[k] = (chunk order)[order[k]] (one copy resident).
+  std::vector<bool> placed(photons.size(), false);
+  for (size_t i = 0; i < photons.size(); ++i) {
+    if (placed[i]) continue;
+    const VcmPhoton first = photons[i];
+    for (size_t j = i;;) {
+      placed[j] = true;
+      const size_t k = order[j];
+      if (k == i) {
+        photons[j] = first;
+        break;
+      }
+      photons[j] = photons[k];
+      j = k;
+    }
+  }
 }
 
 bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it, int64_t paths,
@@ -117,6 +126,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
   const int64_t chunks = (paths + kLightChunk - 1) / kLightChunk;
   out.chunks.resize(size_t(chunks));
   out.path_count = paths;
+  out.max_depth = it.max_depth;
   const pathspace::SubpathParams params{it.max_depth, settings.rr_depth};
   std::vector<pathspace::BidirVertex> z0;
   core::Rng unused;
@@ -125,17 +135,13 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
   // The first pass sizes the chunks from chunk 0, traced alone (vectors grown by doubling
   // would hold up to twice what they need; chunk sizes differ by a few percent).
   const bool first_pass = chunks > 0 && out.chunks[0].vertices.capacity() == 0;
-  size_t vertex_hint = 0, photon_hint = 0;
+  size_t vertex_hint = 0;
   auto trace_chunk = [&](int64_t c) {
     LightChunk& chunk = out.chunks[size_t(c)];
     chunk.clear();
     if (chunk.vertices.capacity() < vertex_hint) {
       chunk.vertices.reserve(vertex_hint);
       chunk.prefixes.reserve(vertex_hint);
-    }
-    if (photons && chunk.photons.capacity() < photon_hint) {
-      chunk.photons.reserve(photon_hint);
-      chunk.photon_pos.reserve(photon_hint);
     }
     core::Rng rng(it.seed, (uint64_t(it.index) << 32) | uint64_t(c));
     std::vector<pathspace::BidirVertex> path;
@@ -147,12 +153,12 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
       pre.resize(path.size());
       pathspace::vcm_prefixes(path.data(), int(path.size()), false, it.mis, pre.data());
       if (settings.light_traces() && it.light_tracing) light_trace(scene, settings, it, path, pre, z0[0], chunk);
-      const size_t first = chunk.vertices.size();
       chunk.vertices.insert(chunk.vertices.end(), path.begin(), path.end());
       chunk.prefixes.insert(chunk.prefixes.end(), pre.begin(), pre.end());
       chunk.start.push_back(uint32_t(chunk.vertices.size()));
       chunk.counters.light_vertices += int64_t(path.size());
-      if (photons) add_photons(it, first, p, chunk);
+      if (photons)
+        for (size_t j = 1; j < path.size(); ++j) chunk.photon_count += is_photon(path[j], j, it.max_depth);
     }
     chunk.counters.splats = int64_t(chunk.splats.size());
     chunk.done = true;
@@ -160,9 +166,8 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
   int64_t pilot = 0;
   if (first_pass) {
     trace_chunk(0);
-    const size_t v = out.chunks[0].vertices.size(), ph = out.chunks[0].photons.size();
+    const size_t v = out.chunks[0].vertices.size();
     vertex_hint = v + v / 8;
-    photon_hint = ph + ph / 8;
     pilot = 1;
   }
   core::parallel_for(

@@ -3,7 +3,7 @@
 // random stream (seed, iteration, chunk), so the stored paths and the image are the same
 // for any thread count. Every vertex is kept (camera path p connects to light path p),
 // with its VCM prefix quantities (pathspace/vcm_mis.h); vertices a merge can use (y_j,
-// j >= 1, non-Dirac surface) are listed as photons. Light tracing (t = 1) is evaluated
+// j >= 1, non-Dirac surface) are photons (LightPathStore::collect_photons). Light tracing (t = 1) is evaluated
 // here and its splats are merged in chunk order.
 #pragma once
 
@@ -47,8 +47,7 @@ struct LightChunk {
   std::vector<pathspace::BidirVertex> vertices;
   std::vector<pathspace::VcmPrefix> prefixes;  // parallel to vertices
   std::vector<uint32_t> start;                 // local path i: vertices [start[i], start[i + 1])
-  std::vector<VcmPhoton> photons;
-  std::vector<Vec3> photon_pos;
+  uint32_t photon_count = 0;  // vertices that are photons (LightPathStore::collect_photons)
   std::vector<Splat> splats;
   VcmLightCounters counters;
   bool done = false;
@@ -62,6 +61,7 @@ struct LightPathStore {
   std::vector<VcmPhoton> photons;  // every chunk's, in the grid's slot order (gather_photons)
   std::vector<Vec3> photon_pos;    // every chunk's, in chunk order (the grid's input)
   int64_t path_count = 0;
+  int max_depth = 0;               // of the last light pass (photons are y_j, j < max_depth)
   size_t paths() const { return size_t(path_count); }
   // Light path p: its vertices and prefixes, and its length.
   const pathspace::BidirVertex* path(int64_t p, const pathspace::VcmPrefix** prefixes, int* length) const {
@@ -71,11 +71,11 @@ struct LightPathStore {
     *length = int(c.start[i + 1] - c.start[i]);
     return c.vertices.data() + c.start[i];
   }
-  // Concatenates the chunks' photon positions (chunk order) into photon_pos (the chunks'
-  // copies are freed).
-  void gather_positions();
-  // Fills `photons` in the grid's slot order: photons[k] = input photon order[k] (the
-  // chunks' copies are freed).
+  // Lists every photon of the stored paths (chunk order) into photons and photon_pos, in
+  // one allocation each (chunks fill their slices in parallel).
+  void collect_photons(int threads);
+  // Reorders `photons` into the grid's slot order, in place: photons[k] = the photon
+  // listed at order[k].
   void gather_photons(const std::vector<uint32_t>& order);
   // Frees `photons` and `photon_pos` (between iterations: the next light pass's peak
   // memory does not hold the last iteration's photons).
@@ -91,8 +91,9 @@ struct VcmIteration {
   bool light_tracing = true;    // false: the light pass does not splat (G-VCM light-traces per pixel)
 };
 
-// Traces `paths` light subpaths into `out` (its chunks; photons listed per chunk when the
-// mode merges); returns false if `stop` interrupted it.
+// Traces `paths` light subpaths into `out` (its chunks; photons counted per chunk when the
+// mode merges, listed by LightPathStore::collect_photons); returns false if `stop`
+// interrupted it.
 bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it, int64_t paths,
                        int threads, const std::atomic<bool>* stop, LightPathStore& out, VcmLightCounters& counters);
 

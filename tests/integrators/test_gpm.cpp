@@ -47,7 +47,7 @@ FurnaceResult furnace(const scene::Scene& s, const integrators::GpmSettings& set
   // 64 light paths per pixel (N = 64 res^2): enough photons in every kernel.
   REQUIRE(integrators::trace_light_paths(s, vs, it, int64_t(64) * res * res, 1, nullptr, light, lc));
   integrators::PhotonGrid grid;
-  light.gather_positions();
+  light.collect_photons(1);
   grid.build(light.photon_pos, it.radius);
   light.gather_photons(grid.order());
   const integrators::GpmTracer tracer(s, settings, depth, 1.0, light, grid);

@@ -51,7 +51,7 @@ FurnaceResult furnace(const scene::Scene& s, const integrators::GvcmSettings& se
   integrators::VcmLightCounters lc;
   REQUIRE(integrators::trace_light_paths(s, vs, it, int64_t(res) * res, 1, nullptr, light, lc));
   integrators::PhotonGrid grid;
-  light.gather_positions();
+  light.collect_photons(1);
   grid.build(light.photon_pos, it.radius);
   light.gather_photons(grid.order());
   const integrators::GvcmTracer tracer(s, settings, it, light, grid);
