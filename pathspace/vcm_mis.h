@@ -49,6 +49,10 @@ struct VcmMisConfig {
   VcmFault fault = VcmFault::none;
   bool connections = true;  // vertex connection strategies (camera hits, light tracing, s,t >= 1)
   float eta = 0.0f;         // pi r^2 * light paths per iteration; 0 = no merging strategies
+  // No merge at a vertex whose BSDF's roughness (lowest microfacet alpha of its non-Dirac
+  // parts) is below this: near-specular surfaces are left to connections (Sun et al.
+  // 2017 use 0.01 for G-VCM); 0 = merge at every non-Dirac vertex.
+  float min_merge_roughness = 0.0f;
 };
 
 struct VcmPrefix {
@@ -86,6 +90,7 @@ inline float vcm_merge_weight(const BidirVertex* light, const VcmPrefix* lp, int
 
 // Can a merge happen at this vertex (surface, BSDF with a non-Dirac part)? `interior`:
 // the path continues through the vertex along its stored lobe (Dirac lobes excluded).
-bool vcm_mergeable(const BidirVertex& v, bool interior);
+// `min_roughness`: VcmMisConfig::min_merge_roughness.
+bool vcm_mergeable(const BidirVertex& v, bool interior, float min_roughness = 0.0f);
 
 }  // namespace dp::pathspace

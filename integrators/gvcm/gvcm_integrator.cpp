@@ -32,6 +32,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
         it.radius = float(r0 * std::pow(double(i + 1), 0.5 * (double(m_settings.radius_alpha) - 1.0)));
         it.light_tracing = false;  // light tracing per pixel in the camera pass (its shift needs the pixel)
         it.mis.heuristic = m_settings.heuristic;
+        it.mis.min_merge_roughness = m_settings.roughness_threshold;
         it.mis.eta = m_settings.merging ? float(kPiD * double(it.radius) * double(it.radius) * double(pixels)) : 0.0f;
         return it;
       },

@@ -1,5 +1,9 @@
 #include "integrators/gvcm/gvcm_settings.h"
 
+#include <cmath>
+
+#include "core/error.h"
+
 namespace dp::integrators {
 
 GvcmSettings GvcmSettings::read(Settings& s) {
@@ -17,6 +21,12 @@ GvcmSettings GvcmSettings::read(Settings& s) {
                           "primal image: pairs (every shifted pair's estimates of both pixels, MIS-weighted, as "
                           "G-PT) or vcm (the plain VCM estimate of the base pixel)",
                           {"pairs", "vcm"});
+  g.roughness_threshold = float(s.get_double(
+      "roughness_threshold", g.roughness_threshold,
+      "no merging at vertices whose roughness (microfacet alpha) is below this: near-specular surfaces are left to "
+      "connections, consistently in the MIS weights (Sun et al. 2017: 0.01); 0 = merge at every non-Dirac vertex"));
+  if (!(g.roughness_threshold >= 0.0f) || !std::isfinite(g.roughness_threshold))
+    throw ValueError("setting 'roughness_threshold' must be >= 0", "--set");
   return g;
 }
 

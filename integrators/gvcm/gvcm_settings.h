@@ -20,6 +20,7 @@ struct GvcmFaults {
 struct GvcmSettings : PhotonGradientSettings {
   bool merging = true;           // mode: vcm (connections + merges) | bpt (connections only: no photons, no grid)
   std::string primal = "pairs";  // pairs (both pixels' pair estimates, as G-PT) | vcm
+  float roughness_threshold = 0.01f;  // no merge below this roughness (Sun et al. 2017, Sec. 7: 0.01)
   GvcmFaults faults;             // tests only
 
   static GvcmSettings read(Settings& s);

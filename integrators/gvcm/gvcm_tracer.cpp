@@ -127,7 +127,7 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
   const int nc = int(sc.camera.size());
   for (int t = 2; t <= nc && t <= m_it.max_depth; ++t) {
     const BidirVertex& z = sc.camera[size_t(t - 1)];
-    if (!pathspace::vcm_mergeable(z, false)) continue;
+    if (!pathspace::vcm_mergeable(z, false, m_it.mis.min_merge_roughness)) continue;
     ++counters.merge_queries;
     m_grid.query(z.sp.p, [&](uint32_t slot) {
       const VcmPhoton& ph = m_light.photons[slot];

@@ -72,7 +72,7 @@ bool VcmCameraTracer::sample(const Vec2& raster, int64_t pixel, core::Rng& rng, 
         if (!ok) continue;
         sum += c.value * pathspace::vcm_connection_weight(m_scene, light, lp, s, cam, cp, t, m_it.mis);
       }
-    if (m_settings.merges() && !m_grid.empty() && t <= m_it.max_depth && pathspace::vcm_mergeable(z, false)) {
+    if (m_settings.merges() && !m_grid.empty() && t <= m_it.max_depth && pathspace::vcm_mergeable(z, false, m_it.mis.min_merge_roughness)) {
       sum += merge(cam, cp, t, counters);
       if (m_settings.mode == VcmMode::ppm && !z.delta) break;  // the path's first non-Dirac lobe: merged here
     }

@@ -42,8 +42,8 @@ void light_trace(const scene::Scene& scene, const VcmSettings& settings, const V
 
 // Is light[j] of a path a photon: y_j, 1 <= j < max_depth, a surface whose BSDF has a
 // non-Dirac part (pathspace::vcm_mergeable).
-bool is_photon(const pathspace::BidirVertex& y, size_t j, int max_depth) {
-  return j >= 1 && int(j) < max_depth && pathspace::vcm_mergeable(y, false);
+bool is_photon(const pathspace::BidirVertex& y, size_t j, int max_depth, float min_roughness) {
+  return j >= 1 && int(j) < max_depth && pathspace::vcm_mergeable(y, false, min_roughness);
 }
 
 }  // namespace
@@ -91,7 +91,7 @@ void LightPathStore::collect_photons(int threads) {
     for (size_t i = 0; i + 1 < c.start.size(); ++i)
       for (size_t j = 1; j < c.start[i + 1] - c.start[i]; ++j) {
         const size_t v = c.start[i] + j;
-        if (!is_photon(c.vertices[v], j, max_depth)) continue;
+        if (!is_photon(c.vertices[v], j, max_depth, min_merge_roughness)) continue;
         VcmPhoton& ph = photons[k];
         ph.mis = pathspace::vcm_photon_mis(&c.vertices[c.start[i]], &c.prefixes[c.start[i]], int(j));
         ph.beta = c.vertices[v].beta;
@@ -127,6 +127,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
   out.chunks.resize(size_t(chunks));
   out.path_count = paths;
   out.max_depth = it.max_depth;
+  out.min_merge_roughness = it.mis.min_merge_roughness;
   const pathspace::SubpathParams params{it.max_depth, settings.rr_depth};
   std::vector<pathspace::BidirVertex> z0;
   core::Rng unused;
@@ -158,7 +159,7 @@ bool trace_light_paths(const scene::Scene& scene, const VcmSettings& settings, c
       chunk.start.push_back(uint32_t(chunk.vertices.size()));
       chunk.counters.light_vertices += int64_t(path.size());
       if (photons)
-        for (size_t j = 1; j < path.size(); ++j) chunk.photon_count += is_photon(path[j], j, it.max_depth);
+        for (size_t j = 1; j < path.size(); ++j) chunk.photon_count += is_photon(path[j], j, it.max_depth, it.mis.min_merge_roughness);
     }
     chunk.counters.splats = int64_t(chunk.splats.size());
     chunk.done = true;

@@ -62,6 +62,7 @@ struct LightPathStore {
   std::vector<Vec3> photon_pos;    // every chunk's, in chunk order (the grid's input)
   int64_t path_count = 0;
   int max_depth = 0;               // of the last light pass (photons are y_j, j < max_depth)
+  float min_merge_roughness = 0;   // of the last light pass (pathspace::VcmMisConfig)
   size_t paths() const { return size_t(path_count); }
   // Light path p: its vertices and prefixes, and its length.
   const pathspace::BidirVertex* path(int64_t p, const pathspace::VcmPrefix** prefixes, int* length) const {
