@@ -1,5 +1,7 @@
 #include "integrators/pair_splats.h"
 
+#include <cmath>
+
 namespace dp::integrators {
 
 void PairSplats::pair(int nb, int px, int py, const Rgbd& base, const Rgbd* off, double w, double w_base) {
@@ -20,6 +22,19 @@ void PairSplats::pair(int nb, int px, int py, const Rgbd& base, const Rgbd* off,
   else if (kPairDx[nb] == -1) add(qx, qy, 2, -g);
   else if (kPairDy[nb] == 1) add(px, py, 3, g);
   else add(qx, qy, 3, -g);
+}
+
+bool PairSplats::mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgb& off,
+                          double w_off, double R, double beta, bool ignore_offset) {
+  if (!shifted || is_black(off) || !(w_off > 0.0) || !(R > 0.0) || !std::isfinite(R)) {
+    pair(nb, px, py, base, nullptr, 0.0, w_base);
+    return false;
+  }
+  const double rb = beta == 1.0 ? R : std::pow(R, beta);
+  const double w = ignore_offset ? w_base : 1.0 / (1.0 / w_base + rb / w_off);
+  const Rgbd o = off.cast<double>();
+  pair(nb, px, py, base, &o, w, w_base);
+  return true;
 }
 
 void PairSplats::unpaired(int px, int py, const Rgbd& base, double w_base) {

@@ -28,6 +28,14 @@ struct PairSplats {
   // T_0 fallback with the base's own weight w_base (gradient -w_base f(x)/p(x)). With
   // pair_primal, a quarter of the pair's estimates goes to each pixel's primal.
   void pair(int nb, int px, int py, const Rgbd& base, const Rgbd* off, double w, double w_base);
+  // The MIS-weighted pair of a base term with weight w_base (its strategy's weight among
+  // the base pixel's) and the offset (value f(Tx)|T'|/p(x), the same strategy's weight
+  // w_off among the offset's, ratio R = p(Tx)|T'|/p(x)): gradient weight
+  // 1 / (1/w_base + R^beta / w_off) (Manzi 2015 Eq. 6 for beta = 1, Sun 2017 Eq. 21-23),
+  // or the T_0 fallback when the offset is missing (`shifted` false, zero value, a zero
+  // weight or ratio). `ignore_offset` (tests' MIS defect): weight w_base. True if paired.
+  bool mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgb& off, double w_off,
+                double R, double beta, bool ignore_offset);
   // A base term whose neighbour nb lies outside the image: its own estimate only.
   void unpaired(int px, int py, const Rgbd& base, double w_base);
   // Adds everything to `buf` and one sample to pixel (px, py); false (nothing added but

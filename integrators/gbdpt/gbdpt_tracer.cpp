@@ -153,15 +153,9 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         counters.light_chain += sc.lt.specular_chain;
       }
     }
-    if (!is_black(off) && w_off > 0.0 && ratio > 0.0) {
-      const double wgt = m_settings.faults.mis_without_offset ? term.w_bal : 1.0 / (1.0 / term.w_bal + ratio / w_off);
-      const Rgbd o = off.cast<double>();
-      sc.splats.pair(nb, term.px, term.py, base, &o, wgt, term.w_bal);
-      ++counters.pairs_shifted;
-    } else {
-      sc.splats.pair(nb, term.px, term.py, base, nullptr, 0.0, term.w_bal);  // T_0 fallback
-      ++counters.pairs_fallback;
-    }
+    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w_bal, true, off, w_off, ratio, 1.0,
+                                           m_settings.faults.mis_without_offset);
+    ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
   }
 }
 

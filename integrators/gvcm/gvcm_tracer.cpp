@@ -196,16 +196,9 @@ void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, 
     const GvcmOffsetContext ctx{m_scene, m_it.mis, m_merge_norm, m_shift, sc.camera, sc.shift, sc.off_cp};
     GvcmOffset o;
     const bool ok = gvcm_offset(ctx, st, offset, sc.lt, sc.merge, sc.off_lp, o, counters);
-    if (ok && !is_black(o.value) && o.w > 0.0 && o.R > 0.0 && std::isfinite(o.R)) {
-      const double wgt =
-          m_settings.faults.mis_without_offset ? term.w : 1.0 / (1.0 / term.w + std::pow(o.R, beta) / o.w);
-      const Rgbd off = o.value.cast<double>();
-      sc.splats.pair(nb, term.px, term.py, base, &off, wgt, term.w);
-      ++counters.pairs_shifted;
-    } else {
-      sc.splats.pair(nb, term.px, term.py, base, nullptr, 0.0, term.w);  // T_0 fallback
-      ++counters.pairs_fallback;
-    }
+    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w, ok, o.value, o.w, o.R, beta,
+                                           m_settings.faults.mis_without_offset);
+    ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
   }
 }
 
