@@ -45,5 +45,10 @@ double median_footprint(const scene::Scene& scene, int max_depth, int rr_depth) 
   return r[r.size() / 2];
 }
 
+double first_radius(const scene::Scene& scene, int max_depth, int rr_depth, double scale) {
+  const double footprint = median_footprint(scene, max_depth, rr_depth);
+  return scale * (footprint > 0 ? footprint : 0.003 * double(std::max(scene.scene_radius(), 1e-3f)));
+}
+
 
 }  // namespace dp::integrators

@@ -19,5 +19,8 @@ double footprint_radius(const scene::Scene& scene, const pathspace::BidirVertex*
 // lobes only (z_b) over a sparse set of pixel centres; 0 if no camera path reaches a
 // mergeable vertex.
 double median_footprint(const scene::Scene& scene, int max_depth, int rr_depth);
+// The first iteration's reference radius: `scale` x median_footprint, or x 0.3% of the
+// scene's bounding radius when no camera path reaches a mergeable vertex.
+double first_radius(const scene::Scene& scene, int max_depth, int rr_depth, double scale);
 
 }  // namespace dp::integrators

@@ -24,16 +24,15 @@ void PairSplats::pair(int nb, int px, int py, const Rgbd& base, const Rgbd* off,
   else add(qx, qy, 3, -g);
 }
 
-bool PairSplats::mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgb& off,
+bool PairSplats::mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgbd& off,
                           double w_off, double R, double beta, bool ignore_offset) {
-  if (!shifted || is_black(off) || !(w_off > 0.0) || !(R > 0.0) || !std::isfinite(R)) {
+  if (!shifted || off.isZero() || !(w_off > 0.0) || !(R > 0.0) || !std::isfinite(R)) {
     pair(nb, px, py, base, nullptr, 0.0, w_base);
     return false;
   }
-  const double rb = beta == 1.0 ? R : std::pow(R, beta);
+  const double rb = beta == 1.0 ? R : beta == 2.0 ? R * R : std::pow(R, beta);
   const double w = ignore_offset ? w_base : 1.0 / (1.0 / w_base + rb / w_off);
-  const Rgbd o = off.cast<double>();
-  pair(nb, px, py, base, &o, w, w_base);
+  pair(nb, px, py, base, &off, w, w_base);
   return true;
 }
 

@@ -34,7 +34,7 @@ struct PairSplats {
   // 1 / (1/w_base + R^beta / w_off) (Manzi 2015 Eq. 6 for beta = 1, Sun 2017 Eq. 21-23),
   // or the T_0 fallback when the offset is missing (`shifted` false, zero value, a zero
   // weight or ratio). `ignore_offset` (tests' MIS defect): weight w_base. True if paired.
-  bool mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgb& off, double w_off,
+  bool mis_pair(int nb, int px, int py, const Rgbd& base, double w_base, bool shifted, const Rgbd& off, double w_off,
                 double R, double beta, bool ignore_offset);
   // A base term whose neighbour nb lies outside the image: its own estimate only.
   void unpaired(int px, int py, const Rgbd& base, double w_base);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,19 @@ using IterationTileFn =
 // Called once per iteration once its light paths and grid exist; returns the tile renderer.
 using BeginIterationFn =
     std::function<IterationTileFn(const VcmIteration& it, const LightPathStore& light, const PhotonGrid& grid)>;
+
+// The usual tile renderer: tracer->sample(x, y, rng, scratch[thread], buf, counters) for
+// every pixel, the tile's Counters flushed into the thread's stats.
+template <class Counters, class Tracer, class Scratch>
+IterationTileFn pixel_tiles(std::shared_ptr<const Tracer> tracer, std::vector<Scratch>& scratch) {
+  return [tracer, &scratch](const Tile& tile, core::Rng& rng, int thread, gradients::GradientBuffers& buf,
+                            core::Stats& stats) {
+    Counters counters;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) tracer->sample(x, y, rng, scratch[size_t(thread)], buf, counters);
+    counters.flush(stats);
+  };
+}
 
 struct PhotonIterations {
   GradientPasses passes;               // passes = kept = complete iterations

@@ -153,7 +153,7 @@ void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters&
         counters.light_chain += sc.lt.specular_chain;
       }
     }
-    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w_bal, true, off, w_off, ratio, 1.0,
+    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w_bal, true, off.cast<double>(), w_off, ratio, 1.0,
                                            m_settings.faults.mis_without_offset);
     ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
   }

@@ -17,9 +17,7 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
   const auto& cam = scene.camera();
   const int64_t pixels = int64_t(cam.width()) * cam.height();
   const int threads = resolve_threads(options);
-  const double footprint = median_footprint(scene, options.max_depth, m_settings.rr_depth);
-  const double grid_r0 = double(m_settings.radius_scale) *
-                         (footprint > 0 ? footprint : 0.003 * double(std::max(scene.scene_radius(), 1e-3f)));
+  const double grid_r0 = first_radius(scene, options.max_depth, m_settings.rr_depth, double(m_settings.radius_scale));
   auto shrink = [&](int64_t i) { return std::pow(double(i + 1), 0.5 * (double(m_settings.radius_alpha) - 1.0)); };
   VcmSettings light_settings;  // the light pass of VCM's photon mapping: photons, no light tracing
   light_settings.mode = VcmMode::ppm;
@@ -39,15 +37,10 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
       },
       [&](const VcmIteration& it, const LightPathStore& light, const PhotonGrid& grid) -> IterationTileFn {
         last_shrink = shrink(it.index);
-        auto tracer = std::make_shared<const GpmTracer>(scene, m_settings, options.max_depth,
-                                                        double(m_settings.radius_scale) * last_shrink, light, grid);
-        return [this, tracer, &scratch](const Tile& tile, core::Rng& rng, int thread, gradients::GradientBuffers& buf,
-                                        core::Stats& stats) {
-          GpmCounters counters;
-          for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) tracer->sample(x, y, rng, scratch[size_t(thread)], buf, counters);
-          counters.flush(stats);
-        };
+        return pixel_tiles<GpmCounters>(
+            std::make_shared<const GpmTracer>(scene, m_settings, options.max_depth,
+                                              double(m_settings.radius_scale) * last_shrink, light, grid),
+            scratch);
       });
 
   RenderResult result =
@@ -57,7 +50,7 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
   result.stats.add("gpm.light_vertices", run.light.light_vertices);
   result.stats.add("gpm.photons", run.photons);
   result.info["radius_scale"] = double(m_settings.radius_scale);
-  result.info["radius_footprint_median"] = footprint;  // pixel footprint at z_b, scene units
+  result.info["radius_grid_initial"] = grid_r0;  // the grid's cells: radius_scale x the median footprint
   result.info["radius_final_factor"] = double(m_settings.radius_scale) * last_shrink;
   result.wall_seconds = timer.seconds();
   return result;

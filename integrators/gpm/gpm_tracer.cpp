@@ -167,14 +167,10 @@ void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, doubl
         counters.merge_chain += ms.specular_chain;
       }
     }
-    if (!off.isZero() && R > 0 && std::isfinite(R)) {
-      const double wgt = m_settings.faults.mis_without_offset ? 1.0 : 1.0 / (1.0 + std::pow(R, beta));
-      sc.splats.pair(nb, px, py, base, &off, wgt, 1.0);
-      ++counters.pairs_shifted;
-    } else {
-      sc.splats.pair(nb, px, py, base, nullptr, 0.0, 1.0);  // T_0 fallback
-      ++counters.pairs_fallback;
-    }
+    // One strategy per pixel: both VCM-style weights are 1, the weight is 1 / (1 + R^beta).
+    const bool paired = sc.splats.mis_pair(nb, px, py, base, 1.0, true, off, 1.0, R, beta,
+                                           m_settings.faults.mis_without_offset);
+    ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
   }
 }
 

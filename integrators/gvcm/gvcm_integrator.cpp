@@ -14,9 +14,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const auto& cam = scene.camera();
   const int64_t pixels = int64_t(cam.width()) * cam.height();
   const int threads = resolve_threads(options);
-  const double footprint = median_footprint(scene, options.max_depth, m_settings.rr_depth);
-  const double r0 = double(m_settings.radius_scale) *
-                    (footprint > 0 ? footprint : 0.003 * double(std::max(scene.scene_radius(), 1e-3f)));
+  const double r0 = first_radius(scene, options.max_depth, m_settings.rr_depth, double(m_settings.radius_scale));
   VcmSettings light_settings;  // VCM's light pass: every vertex stored, photons listed
   light_settings.mode = m_settings.merging ? VcmMode::vcm : VcmMode::bpt;  // bpt: no photons listed
   light_settings.rr_depth = m_settings.rr_depth;
@@ -37,14 +35,8 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
         return it;
       },
       [&](const VcmIteration& it, const LightPathStore& light, const PhotonGrid& grid) -> IterationTileFn {
-        auto tracer = std::make_shared<const GvcmTracer>(scene, m_settings, it, light, grid);
-        return [tracer, &scratch](const Tile& tile, core::Rng& rng, int thread, gradients::GradientBuffers& buf,
-                                  core::Stats& stats) {
-          GvcmCounters counters;
-          for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) tracer->sample(x, y, rng, scratch[size_t(thread)], buf, counters);
-          counters.flush(stats);
-        };
+        return pixel_tiles<GvcmCounters>(std::make_shared<const GvcmTracer>(scene, m_settings, it, light, grid),
+                                         scratch);
       });
 
   RenderResult result =
@@ -55,7 +47,6 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
   result.stats.add("gvcm.photons", run.photons);
   result.info["radius_initial"] = r0;
   result.info["radius_final"] = double(run.last_radius);
-  result.info["radius_footprint_median"] = footprint;
   result.wall_seconds = timer.seconds();
   return result;
 }

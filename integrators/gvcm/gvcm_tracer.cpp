@@ -196,7 +196,7 @@ void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, 
     const GvcmOffsetContext ctx{m_scene, m_it.mis, m_merge_norm, m_shift, sc.camera, sc.shift, sc.off_cp};
     GvcmOffset o;
     const bool ok = gvcm_offset(ctx, st, offset, sc.lt, sc.merge, sc.off_lp, o, counters);
-    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w, ok, o.value, o.w, o.R, beta,
+    const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w, ok, o.value.cast<double>(), o.w, o.R, beta,
                                            m_settings.faults.mis_without_offset);
     ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
   }
