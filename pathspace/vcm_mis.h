@@ -28,7 +28,22 @@
 //   connection (s, t): 1 / (1 + W_L + W_C), W_L = h(p<-(y_{s-1})) (V [merge at y_{s-1}] + D^L_{s-1}),
 //                       W_C = h(p<-(z_{t-1})) (V [merge at z_{t-1}] + D^C_{t-1});
 //   merge at (y_j ~ z_{t-1}): 1 / (1 + (D^L_j + D^C_{t-1}) / V).
+// (With the adaptive kernel below, each V is h(eta_k) of the vertex it merges at.)
 // Dirac-derived densities are 0 in storage and count as 1 (they cancel), as in bidir_mis.
+//
+// Adaptive merging kernel (Sun et al. 2017, Sec. 6; VcmMisConfig::adaptive_kernel): the
+// radius at camera vertex z_t is r_t = 0.5^(10 tau(z_(t-1))) r_(t-1), so a merge at x_k
+// has eta_k = eta * prod c(x_m) over the vertices between x_k and the pinhole, with
+// c(v) = r_t^2 / r_(t-1)^2 = 0.25^(10 tau(v)), tau = min(1, roughness) (diffuse 1; 0 where
+// the path took a Dirac lobe; vcm_kernel_shrink). eta_k is a function of the path, so the weights stay a partition of
+// unity. On the camera side it is known per vertex: m_i = prod_{q=1..i} c(v_q) (camera
+// order, the pinhole v_0 has m = 1) and a merge at v_{i-1} uses eta * m_(i-2). On the light
+// side the product is only complete once the camera side is known: the prefix keeps the
+// merge-derived part of b apart, m_i = sum over merges at y_q (q < i) carrying
+// prod c(y_(q+1) .. y_(i-1)), extended by h(c(v_(i-1))) per step; at evaluation it is
+// scaled by K = h(c(junction) * prod c(camera vertices)):
+//   D_i = a_i + (b_i + K m_i) h(p<-(v_(i-1))).
+// Without the adaptive kernel every c is 1 and this is the single-eta recursion above.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +57,7 @@ enum class VcmFault : uint8_t {
   none,
   merge_without_light_prefix,  // a merge's light-side sum keeps only the connection at the photon (b term lost)
   dirac_interior_kept,         // a connection ending at an interior Dirac vertex stays in the prefix sums
+  shrink_light_side_lost,      // adaptive kernel: light-side merge terms without the camera side's shrink (K = 1)
 };
 
 struct VcmMisConfig {
@@ -53,11 +69,20 @@ struct VcmMisConfig {
   // parts) is below this: near-specular surfaces are left to connections (Sun et al.
   // 2017 use 0.01 for G-VCM); 0 = merge at every non-Dirac vertex.
   float min_merge_roughness = 0.0f;
+  // Shrink the merging radius along the camera subpath (Sun et al. 2017, Sec. 6; header).
+  bool adaptive_kernel = false;
 };
 
+// Prefix quantities of one subpath vertex (header comment). Light order: D_i = a + (b + K m)
+// h(p<-(v_{i-1})), b the connection-derived part, m the merge-derived part. Camera order:
+// D_i = a + b h(p<-(v_{i-1})), m = prod_{q=1..i} c(v_q) (1 at the pinhole).
 struct VcmPrefix {
-  double a = 0.0, b = 0.0;  // D_i = a + b h(p<-(v_{i-1})) (header comment)
+  double a = 0.0, b = 0.0, m = 1.0;
 };
+
+// c(v) of the adaptive kernel: 0.25^(10 min(1, roughness)) at surface vertices the path
+// leaves through a non-Dirac lobe, 1 elsewhere and without the adaptive kernel.
+double vcm_kernel_shrink(const BidirVertex& v, const VcmMisConfig& config);
 
 // Prefix quantities of every vertex of a subpath (light order for `camera_side` false,
 // camera order otherwise): out[0 .. n-1].

@@ -31,6 +31,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
         it.light_tracing = false;  // light tracing per pixel in the camera pass (its shift needs the pixel)
         it.mis.heuristic = m_settings.heuristic;
         it.mis.min_merge_roughness = m_settings.roughness_threshold;
+        it.mis.adaptive_kernel = m_settings.adaptive_kernel;
         it.mis.eta = m_settings.merging ? float(kPiD * double(it.radius) * double(it.radius) * double(pixels)) : 0.0f;
         return it;
       },

@@ -49,12 +49,17 @@ bool gvcm_offset(const GvcmOffsetContext& ctx, const GvcmStrategy& st, const Vec
                                                     ctx.off_cp.data(), st.t, ctx.mis));
     return true;
   }
+  // Merges: the base's kernel normalises the offset's value too (f(Tx)|T'| / p(x)); R
+  // carries the ratio of the two kernels' areas, eta_k(Tx) / eta_k(x) (adaptive kernel,
+  // pathspace/vcm_mis.h; 1 without it), as the merge's density holds pi r^2.
   const int k = st.t - 1;
+  const double shrink_base = ctx.cp[size_t(k - 1)].m;
+  const float norm = merge_kernel(1.0f, ctx.merge_norm, ctx.cp.data(), st.t).norm;
   if (sh.rejoined && k >= sh.join && k < int(sh.path.size())) {  // case 1: z_k and the photon shared
     ++counters.merge_case1;
     const BidirVertex& zk = sh.path[size_t(k)];
-    out.value = merge_bsdf(zk, st.photon.wi) * st.photon_beta * zk.beta * ctx.merge_norm;
-    out.R = sh.mis_ratio[size_t(st.t)];
+    out.value = merge_bsdf(zk, st.photon.wi) * st.photon_beta * zk.beta * norm;
+    out.R = sh.mis_ratio[size_t(st.t)] * (ctx.off_cp[size_t(k - 1)].m / shrink_base);
     out.w = double(pathspace::vcm_merge_weight(st.photon, sh.path.data(), ctx.off_cp.data(), st.t, ctx.mis));
     return true;
   }
@@ -63,6 +68,7 @@ bool gvcm_offset(const GvcmOffsetContext& ctx, const GvcmStrategy& st, const Vec
     return false;
   }
   // Case 2: the photon's light subpath rejoined at z_b^off (a probabilistic connection).
+  if (k - 1 >= int(ctx.off_cp.size())) return false;
   ++counters.merge_case2;
   const bool ok = gradients::shift_merge(ctx.scene, st.light, st.j, ctx.camera, sh, ctx.shift_options, ms);
   if (ms.walked) counters.walks.merge(ms.chain.stats);
@@ -75,8 +81,8 @@ bool gvcm_offset(const GvcmOffsetContext& ctx, const GvcmStrategy& st, const Vec
   const int n = int(ms.light.size());
   off_lp.resize(size_t(n));
   pathspace::vcm_prefixes(ms.light.data(), n, false, ctx.mis, off_lp.data());
-  out.value = ms.value * ctx.merge_norm;
-  out.R = ms.direction_ratio * ms.area_ratio;
+  out.value = ms.value * norm;
+  out.R = ms.direction_ratio * ms.area_ratio * (ctx.off_cp[size_t(k - 1)].m / shrink_base);
   const pathspace::VcmPhotonMis pm = pathspace::vcm_photon_mis(ms.light.data(), off_lp.data(), n - 1);
   out.w = double(pathspace::vcm_merge_weight(pm, sh.path.data(), ctx.off_cp.data(), st.t, ctx.mis));
   return true;

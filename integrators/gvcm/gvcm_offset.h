@@ -29,9 +29,10 @@ struct GvcmStrategy {
 struct GvcmOffsetContext {
   const scene::Scene& scene;
   const pathspace::VcmMisConfig& mis;
-  float merge_norm;  // 1 / (pi r^2 N)
+  float merge_norm;  // 1 / (pi r^2 N) at the iteration's radius (before the adaptive kernel)
   const gradients::BidirShiftOptions& shift_options;
   const std::vector<pathspace::BidirVertex>& camera;  // the base camera subpath
+  const std::vector<pathspace::VcmPrefix>& cp;        // its VCM prefixes
   const gradients::CameraSubpathShift& shift;         // its shift into the neighbour (strategies t >= 2, merges)
   const std::vector<pathspace::VcmPrefix>& off_cp;    // VCM prefixes of shift.path
 };

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/vcm/vcm_settings.h"
 
 namespace dp::integrators {
 
@@ -25,6 +26,7 @@ GvcmSettings GvcmSettings::read(Settings& s) {
       "roughness_threshold", g.roughness_threshold,
       "no merging at vertices whose roughness (microfacet alpha) is below this: near-specular surfaces are left to "
       "connections, consistently in the MIS weights (Sun et al. 2017: 0.01); 0 = merge at every non-Dirac vertex"));
+  g.adaptive_kernel = read_adaptive_kernel(s, g.adaptive_kernel);
   if (!(g.roughness_threshold >= 0.0f) || !std::isfinite(g.roughness_threshold))
     throw ValueError("setting 'roughness_threshold' must be >= 0", "--set");
   return g;

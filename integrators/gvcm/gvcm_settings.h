@@ -21,6 +21,7 @@ struct GvcmSettings : PhotonGradientSettings {
   bool merging = true;           // mode: vcm (connections + merges) | bpt (connections only: no photons, no grid)
   std::string primal = "pairs";  // pairs (both pixels' pair estimates, as G-PT) | vcm
   float roughness_threshold = 0.01f;  // no merge below this roughness (Sun et al. 2017, Sec. 7: 0.01)
+  bool adaptive_kernel = true;   // r_t = 0.5^(10 tau(z_(t-1))) r_(t-1) along the camera subpath (Sec. 6)
   GvcmFaults faults;             // tests only
 
   static GvcmSettings read(Settings& s);

@@ -128,8 +128,10 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
   for (int t = 2; t <= nc && t <= m_it.max_depth; ++t) {
     const BidirVertex& z = sc.camera[size_t(t - 1)];
     if (!pathspace::vcm_mergeable(z, false, m_it.mis.min_merge_roughness)) continue;
+    const MergeKernel kernel = merge_kernel(m_it.radius, m_merge_norm, sc.cp.data(), t);
+    if (!(kernel.radius > 0.0f)) continue;
     ++counters.merge_queries;
-    m_grid.query(z.sp.p, [&](uint32_t slot) {
+    m_grid.query(z.sp.p, kernel.radius, [&](uint32_t slot) {
       const VcmPhoton& ph = m_light.photons[slot];
       if (ph.depth + t - 1 > m_it.max_depth) return;
       const Rgb f = merge_bsdf(z, ph.mis.wi);
@@ -143,7 +145,7 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
       term.px = px;
       term.py = py;
       term.photon = slot;
-      term.value = f * ph.beta * z.beta * m_merge_norm;
+      term.value = f * ph.beta * z.beta * kernel.norm;
       term.w = double(wv);
       if (!m_pair_primal) sc.splats.add(px, py, 0, (term.value * wv).cast<double>());
       sc.terms.push_back(term);
@@ -193,7 +195,7 @@ void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, 
       st.photon = ph.mis;
       st.photon_beta = ph.beta;
     }
-    const GvcmOffsetContext ctx{m_scene, m_it.mis, m_merge_norm, m_shift, sc.camera, sc.shift, sc.off_cp};
+    const GvcmOffsetContext ctx{m_scene, m_it.mis, m_merge_norm, m_shift, sc.camera, sc.cp, sc.shift, sc.off_cp};
     GvcmOffset o;
     const bool ok = gvcm_offset(ctx, st, offset, sc.lt, sc.merge, sc.off_lp, o, counters);
     const bool paired = sc.splats.mis_pair(nb, term.px, term.py, base, term.w, ok, o.value.cast<double>(), o.w, o.R, beta,

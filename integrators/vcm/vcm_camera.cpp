@@ -1,5 +1,7 @@
 #include "integrators/vcm/vcm_camera.h"
 
+#include <cmath>
+
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
 
@@ -9,6 +11,19 @@ Rgb merge_bsdf(const pathspace::BidirVertex& z, const Vec3& wo) {
   const Vec3 wi = z.sp.shading.to_local(z.wi), w = z.sp.shading.to_local(wo);
   if (!(z.sp.ng.dot(z.wi) * wi.z() > 0.0f) || !(z.sp.ng.dot(wo) * w.z() > 0.0f)) return Rgb::Zero();
   return z.bsdf->eval(scene::BsdfContext{z.sp.uv, scene::TransportMode::radiance}, wi, w);
+}
+
+MergeKernel merge_kernel(float radius, float norm, const pathspace::VcmPrefix* cp, int t) {
+  MergeKernel k;
+  k.shrink = cp[t - 2].m;
+  if (k.shrink == 1.0) {
+    k.radius = radius;
+    k.norm = norm;
+  } else if (k.shrink >= 1e-20) {
+    k.radius = float(double(radius) * std::sqrt(k.shrink));
+    k.norm = float(double(norm) / k.shrink);
+  }
+  return k;
 }
 
 VcmCameraTracer::VcmCameraTracer(const scene::Scene& scene, const VcmSettings& settings, const VcmIteration& it,
@@ -22,9 +37,11 @@ Rgb VcmCameraTracer::merge(const pathspace::BidirVertex* camera, const pathspace
                            VcmCameraCounters& counters) const {
   const pathspace::BidirVertex& z = camera[t - 1];
   const bool weighted = m_settings.mode != VcmMode::ppm;
+  const MergeKernel kernel = merge_kernel(m_it.radius, m_merge_norm, cp, t);
+  if (!(kernel.radius > 0.0f)) return Rgb::Zero();
   Rgb sum = Rgb::Zero();
   ++counters.merge_queries;
-  m_grid.query(z.sp.p, [&](uint32_t k) {
+  m_grid.query(z.sp.p, kernel.radius, [&](uint32_t k) {
     const VcmPhoton& ph = m_light.photons[k];
     if (ph.depth + t - 1 > m_it.max_depth) return;  // path depth: j light segments + t - 1 camera segments
     const Rgb f = merge_bsdf(z, ph.mis.wi);
@@ -33,7 +50,7 @@ Rgb VcmCameraTracer::merge(const pathspace::BidirVertex* camera, const pathspace
     const float w = weighted ? pathspace::vcm_merge_weight(ph.mis, camera, cp, t, m_it.mis) : 1.0f;
     sum += w * f * ph.beta;
   });
-  return sum * z.beta * m_merge_norm;
+  return sum * z.beta * kernel.norm;
 }
 
 bool VcmCameraTracer::sample(const Vec2& raster, int64_t pixel, core::Rng& rng, VcmCameraScratch& sc, Rgb& L,

@@ -19,6 +19,17 @@ namespace dp::integrators {
 // the photon's throughput carries it); 0 if either direction violates sidedness.
 Rgb merge_bsdf(const pathspace::BidirVertex& z, const Vec3& wo);
 
+// The merging kernel at camera[t-1] (t >= 2): the iteration's radius and normalisation
+// 1 / (pi r^2 N), with r^2 scaled by the adaptive kernel's prod c(z_1 .. z_(t-2)) =
+// cp[t-2].m (pathspace/vcm_mis.h; 1 without it). radius 0 = no merge: below a factor of
+// 1e-20 in r^2 (a few diffuse bounces) the kernel is skipped so that its normalisation
+// cannot overflow; the MIS weight of such a merge is below ~1e-20 of its path's weights.
+struct MergeKernel {
+  float radius = 0, norm = 0;
+  double shrink = 1;  // the r^2 factor
+};
+MergeKernel merge_kernel(float radius, float norm, const pathspace::VcmPrefix* cp, int t);
+
 struct VcmCameraCounters {
   int64_t camera_vertices = 0, connections = 0, occluded = 0, merge_queries = 0, merges = 0, nan_dropped = 0;
   VcmCameraCounters& operator+=(const VcmCameraCounters& o) {

@@ -69,6 +69,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
     it.radius = float(double(r0) / std::pow(double(done + 1), 0.5 * (1.0 - double(m_settings.radius_alpha))));
     it.mis.heuristic = m_settings.heuristic;
     it.mis.connections = m_settings.connects();
+    it.mis.adaptive_kernel = m_settings.adaptive_kernel;
     it.mis.eta = m_settings.merges() ? float(kPiD * double(it.radius) * double(it.radius) * double(pixels)) : 0.0f;
     VcmLightCounters lc;
     if (!trace_light_paths(scene, m_settings, it, pixels, threads, options.stop, light, lc)) {

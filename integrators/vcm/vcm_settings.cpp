@@ -17,6 +17,13 @@ std::string VcmSettings::mode_name(VcmMode m) {
   return "vcm";
 }
 
+bool read_adaptive_kernel(Settings& s, bool def) {
+  return s.get_bool("adaptive_kernel", def,
+                    "shrink the merging radius along the camera subpath, r_t = 0.5^(10 tau(z_(t-1))) r_(t-1) with tau "
+                    "the roughness, 1 for diffuse, 0 through Dirac lobes (Sun et al. 2017, Sec. 6), in the merges, "
+                    "their shifts and the MIS weights alike");
+}
+
 VcmSettings VcmSettings::read(Settings& s) {
   VcmSettings v;
   const std::string mode = s.get_string(
@@ -33,6 +40,7 @@ VcmSettings VcmSettings::read(Settings& s) {
   const std::string mis = s.get_string("mis", "power", "MIS heuristic over the strategies (Veach 1997, Sec. 9.2)",
                                        {"power", "balance"});
   v.heuristic = mis == "balance" ? pathspace::MisHeuristic::balance : pathspace::MisHeuristic::power;
+  v.adaptive_kernel = read_adaptive_kernel(s, v.adaptive_kernel);
   if (!(v.radius > 0.0f) || !std::isfinite(v.radius)) throw ValueError("setting 'radius' must be > 0 (got " + std::to_string(v.radius) + ")", "--set");
   if (!(v.radius_alpha > 0.0f && v.radius_alpha <= 1.0f))
     throw ValueError("setting 'radius_alpha' must be in (0, 1] (got " + std::to_string(v.radius_alpha) + ")", "--set");

@@ -27,6 +27,7 @@ struct VcmSettings {
   float radius_alpha = 0.75f;   // r_i = r_0 i^((alpha - 1) / 2) (Knaus & Zwicker 2011)
   int rr_depth = 5;             // Russian roulette on each subpath once it has this many segments
   pathspace::MisHeuristic heuristic = pathspace::MisHeuristic::power;
+  bool adaptive_kernel = false;  // shrink the radius along the camera subpath (Sun et al. 2017, Sec. 6)
 
   bool connects() const { return mode == VcmMode::vcm || mode == VcmMode::bpt; }
   bool merges() const { return mode == VcmMode::vcm || mode == VcmMode::vm || mode == VcmMode::ppm; }
@@ -34,5 +35,8 @@ struct VcmSettings {
   static std::string mode_name(VcmMode m);
   static VcmSettings read(Settings& s);
 };
+
+// The `adaptive_kernel` key of vcm and gvcm (pathspace/vcm_mis.h), with default `def`.
+bool read_adaptive_kernel(Settings& s, bool def);
 
 }  // namespace dp::integrators

@@ -47,6 +47,7 @@ FurnaceResult furnace(const scene::Scene& s, const integrators::GvcmSettings& se
   it.radius = 0.05f;
   it.light_tracing = false;
   it.mis.eta = float(kPiD * 0.05 * 0.05 * double(res * res));
+  it.mis.adaptive_kernel = settings.adaptive_kernel;
   integrators::LightPathStore light;
   integrators::VcmLightCounters lc;
   REQUIRE(integrators::trace_light_paths(s, vs, it, int64_t(res) * res, 1, nullptr, light, lc));
@@ -121,8 +122,11 @@ void print(const char* what, const Verdict& v, const Blocks& g, const Blocks& p,
 
 TEST_CASE("G-VCM furnace: every shifted term equals its base within the round-off bound; J = 1 is rejected",
           "[unit]") {
+  // Without the adaptive kernel (merges after the first vertex keep the full radius, so
+  // case 1 is exercised often); with it, below.
   const auto s = furnace_sphere(0.5f, 0.5f, 0.0f, 8);
   integrators::GvcmSettings settings = defaults();
+  settings.adaptive_kernel = false;
   const FurnaceResult ok = furnace(*s, settings);
   settings.faults.jacobian = gradients::JacobianFault::unit;
   const FurnaceResult bad = furnace(*s, settings);
@@ -136,6 +140,17 @@ TEST_CASE("G-VCM furnace: every shifted term equals its base within the round-of
   CHECK(ok.fallbacks == 0);  // a closed diffuse sphere: every term shifts
   CHECK(ok.worst <= 1.0);
   CHECK(bad.worst > 1.0);
+  // The adaptive kernel: past a diffuse vertex r^2 shrinks by 0.25^10, so case-1 merges
+  // become rare; each shifted merge uses the base's kernel and the same photon.
+  settings = defaults();
+  const FurnaceResult adaptive = furnace(*s, settings);
+  std::printf("gvcm furnace, adaptive kernel: %lld shifted pairs (%lld merges case 1, %lld case 2), %lld fallbacks; "
+              "worst sum |g| / bound %.3f\n",
+              (long long)adaptive.pairs, (long long)adaptive.case1, (long long)adaptive.case2,
+              (long long)adaptive.fallbacks, adaptive.worst);
+  REQUIRE(adaptive.case2 > 100);
+  CHECK(adaptive.fallbacks == 0);
+  CHECK(adaptive.worst <= 1.0);
 }
 
 TEST_CASE("G-VCM gradients and L2 mean agree with PT and BDPT at a small radius; an MIS defect is rejected", "[stat]") {

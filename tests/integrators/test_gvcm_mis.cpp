@@ -31,8 +31,11 @@ struct Outcome {
   int64_t paths = 0, merges = 0, light_tracing = 0, skipped_dirac = 0, skipped_failed = 0;
 };
 
-// `drop_case2_area`: a deliberate defect, the merging shift's R without its area factor.
-Outcome check(const scene::Scene& s, const pathspace::VcmMisConfig& mis, bool drop_case2_area, int samples) {
+// Deliberate defects: the merging shift's R without its area factor; a merge's R without
+// the ratio of the offset's and the base's adaptive kernels.
+enum class Defect { none, case2_area, kernel_ratio };
+
+Outcome check(const scene::Scene& s, const pathspace::VcmMisConfig& mis, Defect defect, int samples) {
   Outcome o;
   const double beta = mis.heuristic == pathspace::MisHeuristic::power ? 2.0 : 1.0;
   const Vec2 offset(1, 0);
@@ -63,12 +66,14 @@ Outcome check(const scene::Scene& s, const pathspace::VcmMisConfig& mis, bool dr
       if (!(w_base > 0)) return true;
       off_cp.resize(sh.path.size());
       pathspace::vcm_prefixes(sh.path.data(), int(sh.path.size()), true, mis, off_cp.data());
-      const integrators::GvcmOffsetContext ctx{s, mis, norm, opt, cs, sh, off_cp};
+      const integrators::GvcmOffsetContext ctx{s, mis, norm, opt, cs, cp, sh, off_cp};
       integrators::GvcmOffset off;
       const int64_t case2 = counters.merge_case2_shifted;
       if (!integrators::gvcm_offset(ctx, st, offset, lt, ms, off_lp, off, counters) || !(off.w > 0) || !(off.R > 0))
         return false;
-      if (drop_case2_area && counters.merge_case2_shifted > case2) off.R /= ms.area_ratio;
+      if (defect == Defect::case2_area && counters.merge_case2_shifted > case2) off.R /= ms.area_ratio;
+      if (defect == Defect::kernel_ratio && st.merge)
+        off.R /= off_cp[size_t(st.t - 2)].m / cp[size_t(st.t - 2)].m;
       const double rb = std::pow(off.R, beta);
       sum += 1.0 / (1.0 / w_base + rb / off.w) + 1.0 / (1.0 / off.w + 1.0 / (rb * w_base));
       return true;
@@ -143,8 +148,8 @@ TEST_CASE("G-VCM: gradient MIS weights over active and passive strategies sum to
     mis.heuristic = heuristic;
     const float r = 0.01f * box->scene_radius();
     mis.eta = kPi * r * r * 256.0f;
-    const Outcome o = check(*box, mis, false, 400);
-    const Outcome bad = check(*box, mis, true, 400);
+    const Outcome o = check(*box, mis, Defect::none, 400);
+    const Outcome bad = check(*box, mis, Defect::case2_area, 400);
     std::printf("gvcm mis [%s]: %lld path pairs (%lld merges, %lld light-tracing strategies), skipped %lld (Dirac) "
                 "%lld (a shift failed); max |sum - 1| %.3g (fault: case-2 R without its area factor: %.3g)\n",
                 heuristic == pathspace::MisHeuristic::power ? "power" : "balance", (long long)o.paths,
@@ -156,5 +161,37 @@ TEST_CASE("G-VCM: gradient MIS weights over active and passive strategies sum to
     // Float densities and Jacobians (u = 6e-8), a few dozen roundings per ratio: 1e-5.
     CHECK(o.worst < 1e-5);
     CHECK(bad.worst > 1e-5);
+  }
+}
+
+TEST_CASE("G-VCM: with the adaptive kernel the gradient MIS weights still sum to 1", "[unit]") {
+  // Diffuse walls (r^2 x 0.25^10 past them) and two rough conductors (x 0.25^3 and
+  // x 0.25^1): where the shift moves a camera vertex onto another material the offset's
+  // kernel differs from the base's, and a merge's R must carry the ratio.
+  auto conductor = [](float alpha) {
+    return scene::make_two_sided(scene::make_conductor(alpha, alpha, scene::MicrofacetType::ggx,
+                                                       scene::ConductorFresnel{},
+                                                       scene::constant_texture(Rgb(0.9f, 0.8f, 0.6f))));
+  };
+  const auto box = lit_box(conductor(0.3f), conductor(0.1f), 16);
+  for (const auto heuristic : {pathspace::MisHeuristic::power, pathspace::MisHeuristic::balance}) {
+    pathspace::VcmMisConfig mis;
+    mis.heuristic = heuristic;
+    mis.adaptive_kernel = true;
+    const float r = 0.01f * box->scene_radius();
+    mis.eta = kPi * r * r * 256.0f;
+    const Outcome o = check(*box, mis, Defect::none, 400);
+    const Outcome bad = check(*box, mis, Defect::kernel_ratio, 400);
+    std::printf("gvcm mis, adaptive kernel [%s]: %lld path pairs (%lld merges), max |sum - 1| %.3g (fault: R without "
+                "the kernel ratio: %.3g)\n",
+                heuristic == pathspace::MisHeuristic::power ? "power" : "balance", (long long)o.paths,
+                (long long)o.merges, o.worst, bad.worst);
+    REQUIRE(o.paths > 300);
+    CHECK(o.merges > 300);
+    CHECK(o.worst < 1e-5);
+    // Under the power heuristic the merges whose two kernels differ (a camera vertex moved
+    // between a wall and a sphere) weigh ~c^2 <= 1e-6 of their paths: the defect stays
+    // at round-off there (measured 3e-7), so it is asserted with the balance heuristic.
+    if (heuristic == pathspace::MisHeuristic::balance) CHECK(bad.worst > 1e-5);
   }
 }
