@@ -9,6 +9,8 @@ find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(tinyobjloader REQUIRED)
 find_package(ZLIB REQUIRED)
+# libpugixml-dev ships a CMake package (pugixml::pugixml) as well as pugixml.pc.
+find_package(pugixml 1.13 CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(FFTW3F REQUIRED IMPORTED_TARGET fftw3f)

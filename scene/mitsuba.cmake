@@ -11,4 +11,4 @@ target_sources(deltapath_scene PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/mitsuba_shapes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mitsuba_media.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mitsuba_emitters.cpp)
-target_link_libraries(deltapath_scene PRIVATE ZLIB::ZLIB)
+target_link_libraries(deltapath_scene PRIVATE ZLIB::ZLIB pugixml::pugixml)

@@ -1,9 +1,19 @@
-// Strict XML reader (contract in xml_reader.h). A recursive-descent parser over the
-// whole text; `m_line` counts newlines consumed so far.
+// Strict XML reader (contract in xml_reader.h) on top of pugixml. pugixml does the
+// tokenising and builds its tree without recursion; this file adds what pugixml accepts
+// but scene files must not contain (see the header), decodes entities itself (pugixml
+// keeps unknown ones verbatim) and copies the tree into XmlElements, refusing it deeper
+// than kMaxDepth so that no recursive walk (the copy, ~XmlElement, the importer) can
+// exhaust the stack.
 #include "scene/xml_reader.h"
 
+#include <pugixml.hpp>
+
+#include <algorithm>
 #include <fstream>
+#include <memory>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "core/error.h"
 
@@ -22,11 +32,16 @@ const std::string& XmlElement::file_name() const {
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-bool is_name_start(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == ':' || (unsigned char)c >= 0x80;
+constexpr int kMaxDepth = 256;  // the root element is depth 1
+constexpr size_t kMaxQuote = 60;
+
+// `s` for a one-line message: at most kMaxQuote characters, control characters as '?'.
+std::string quote(std::string_view s) {
+  std::string out(s.substr(0, kMaxQuote));
+  for (char& c : out)
+    if ((unsigned char)c < 0x20) c = '?';
+  return s.size() > kMaxQuote ? out + "..." : out;
 }
-bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.'; }
 
 void append_utf8(std::string& out, unsigned long cp) {
   if (cp < 0x80) {
@@ -46,72 +61,18 @@ void append_utf8(std::string& out, unsigned long cp) {
   }
 }
 
-class Parser {
- public:
-  Parser(const std::string& text, const std::string& file)
-      : m_text(text), m_file(std::make_shared<const std::string>(file)) {}
-
-  XmlElement parse_document() {
-    if (m_text.compare(0, 3, "\xEF\xBB\xBF") == 0) m_pos = 3;  // UTF-8 byte order mark
-    skip_misc();
-    if (at_end() || peek() != '<') fail("expected the root element");
-    XmlElement root = parse_element();
-    skip_misc();
-    if (!at_end()) fail("unexpected content after the root element </" + root.tag + ">");
-    return root;
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& msg) const { throw ParseError("malformed XML: " + msg, *m_file, m_line); }
-  bool at_end() const { return m_pos >= m_text.size(); }
-  char peek() const { return m_text[m_pos]; }
-  bool starts_with(const char* s) const { return m_text.compare(m_pos, std::char_traits<char>::length(s), s) == 0; }
-  void advance(size_t n = 1) {
-    for (size_t i = 0; i < n && m_pos < m_text.size(); ++i)
-      if (m_text[m_pos++] == '\n') ++m_line;
-  }
-  void skip_space() {
-    while (!at_end() && is_space(peek())) advance();
-  }
-  // Skips everything up to and including `end`; fails with `what` if it never comes.
-  void skip_past(const char* end, const std::string& what) {
-    const size_t at = m_text.find(end, m_pos);
-    if (at == std::string::npos) fail("unterminated " + what);
-    advance(at + std::char_traits<char>::length(end) - m_pos);
-  }
-  // Whitespace, comments and processing instructions outside the root element.
-  void skip_misc() {
-    for (;;) {
-      skip_space();
-      if (starts_with("<!--")) {
-        skip_comment();
-      } else if (starts_with("<?")) {
-        skip_past("?>", "processing instruction");
-      } else if (starts_with("<!DOCTYPE")) {
-        fail("DOCTYPE declarations are not supported");
-      } else {
-        return;
-      }
+// The five predefined entities and character references; anything else is an error.
+// Returns false with `error` set and `i` at the offending character.
+bool decode_entities(std::string_view raw, std::string& out, std::string& error, size_t& i) {
+  for (i = 0; i < raw.size(); ++i) {
+    if (raw[i] == '<') return error = "'<' inside an attribute value (write &lt;)", false;
+    if (raw[i] != '&') {
+      out += raw[i];
+      continue;
     }
-  }
-  void skip_comment() {
-    advance(4);
-    const size_t at = m_text.find("--", m_pos);
-    if (at == std::string::npos) fail("unterminated comment");
-    advance(at - m_pos);
-    if (!starts_with("-->")) fail("'--' inside a comment");
-    advance(3);
-  }
-  std::string parse_name(const char* what) {
-    if (at_end() || !is_name_start(peek())) fail(std::string("expected ") + what);
-    const size_t start = m_pos;
-    while (!at_end() && is_name_char(peek())) advance();
-    return m_text.substr(start, m_pos - start);
-  }
-  void decode_entity(std::string& out) {
-    const size_t semi = m_text.find(';', m_pos);
-    if (semi == std::string::npos || semi - m_pos > 12) fail("unterminated entity reference");
-    const std::string ent = m_text.substr(m_pos + 1, semi - m_pos - 1);
+    const size_t semi = raw.find(';', i);
+    if (semi == std::string_view::npos || semi - i > 12) return error = "unterminated entity reference", false;
+    const std::string ent(raw.substr(i + 1, semi - i - 1));
     if (ent == "lt") out += '<';
     else if (ent == "gt") out += '>';
     else if (ent == "amp") out += '&';
@@ -121,104 +82,161 @@ class Parser {
       const bool hex = ent[1] == 'x' || ent[1] == 'X';
       const std::string digits = ent.substr(hex ? 2 : 1);
       if (digits.empty() || digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
-        fail("invalid character reference '&" + ent + ";'");
+        return error = "invalid character reference '&" + ent + ";'", false;
       const unsigned long cp = std::stoul(digits, nullptr, hex ? 16 : 10);
-      if (cp == 0 || cp > 0x10FFFF) fail("character reference '&" + ent + ";' out of range");
+      if (cp == 0 || cp > 0x10FFFF) return error = "character reference '&" + ent + ";' out of range", false;
       append_utf8(out, cp);
     } else {
-      fail("unknown entity '&" + ent + ";'");
+      return error = "unknown entity '&" + ent + ";'", false;
     }
-    advance(semi + 1 - m_pos);
+    i = semi;
   }
-  std::string parse_attribute_value() {
-    if (at_end() || (peek() != '"' && peek() != '\'')) fail("attribute value must be quoted");
-    const char quote = peek();
-    advance();
-    std::string out;
-    for (;;) {
-      if (at_end()) fail("unterminated attribute value");
-      const char c = peek();
-      if (c == quote) break;
-      if (c == '<') fail("'<' inside an attribute value (write &lt;)");
-      if (c == '&') {
-        decode_entity(out);
-      } else {
-        out += c;
-        advance();
-      }
+  return true;
+}
+
+class Reader {
+ public:
+  Reader(const std::string& text, const std::string& file)
+      : m_text(text), m_file(std::make_shared<const std::string>(file)) {
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') m_newlines.push_back(i);
+  }
+
+  XmlElement read() {
+    if (const size_t nul = m_text.find('\0'); nul != std::string::npos) fail(nul, "NUL byte in the input");
+    // In place, so that every name and value pugixml returns points into m_buf and its
+    // offset gives the line. The extra newline: with parse_fragment in place, pugixml
+    // drops the buffer's last character, and text after the root must still be seen.
+    m_buf.assign(m_text.begin(), m_text.end());
+    m_buf.push_back('\n');
+    pugi::xml_document doc;
+    // No parse_escapes/eol/wconv: values arrive verbatim. parse_fragment keeps text
+    // outside the root as nodes; DOCTYPE and CDATA become nodes so they can be refused.
+    const unsigned options = pugi::parse_comments | pugi::parse_cdata | pugi::parse_doctype | pugi::parse_fragment;
+    const pugi::xml_parse_result r = doc.load_buffer_inplace(m_buf.data(), m_buf.size(), options, pugi::encoding_utf8);
+    if (!r) fail_parse(r);
+
+    pugi::xml_node root;
+    for (pugi::xml_node n : doc.children()) {
+      check_misc(n);
+      const bool content = n.type() == pugi::node_element || n.type() == pugi::node_pcdata;
+      if (content && root) fail(n, "unexpected content after the root element </" + quote(root.name()) + ">");
+      if (n.type() == pugi::node_pcdata) fail(n, "expected the root element");
+      if (n.type() == pugi::node_element) root = n;
     }
-    advance();
-    return out;
+    if (!root) fail(m_text.size(), "expected the root element");
+    return convert(root, 1);
   }
-  XmlElement parse_element() {
-    XmlElement e;
-    e.file = m_file;
-    e.line = m_line;
-    advance();  // '<'
-    e.tag = parse_name("an element name");
-    for (;;) {
-      const bool had_space = !at_end() && is_space(peek());
-      skip_space();
-      if (at_end()) fail("unterminated tag <" + e.tag + ">");
-      if (starts_with("/>")) {
-        advance(2);
-        return e;
-      }
-      if (peek() == '>') {
-        advance();
+
+ private:
+  int line_of(size_t offset) const {
+    return 1 + int(std::lower_bound(m_newlines.begin(), m_newlines.end(), offset) - m_newlines.begin());
+  }
+  size_t offset_of(const char* p) const { return size_t(p - m_buf.data()); }
+  [[noreturn]] void fail(size_t offset, const std::string& msg) const {
+    throw ParseError("malformed XML: " + msg, *m_file, line_of(offset));
+  }
+  // At the first non-blank character of a text node, or the '<' of any other node
+  // (pugixml's offset is that of the name, or of the value: "<!DOCTYPE ", "<![CDATA[").
+  [[noreturn]] void fail(pugi::xml_node n, const std::string& msg) const {
+    size_t at = size_t(n.offset_debug());
+    if (n.type() == pugi::node_pcdata)
+      at += std::string_view(n.value()).find_first_not_of(" \t\r\n");
+    else
+      at = m_text.rfind('<', at);
+    fail(at, msg);
+  }
+
+  // Comments are skipped (but '--' inside one is an error, as XML says); DOCTYPE, CDATA
+  // and non-blank text are refused. pugixml drops blank text itself.
+  void check_misc(pugi::xml_node n) const {
+    switch (n.type()) {
+      case pugi::node_comment: {
+        const std::string_view v = n.value();
+        if (v.find("--") != std::string_view::npos || (!v.empty() && v.back() == '-')) fail(n, "'--' inside a comment");
         break;
       }
-      if (!had_space) fail("expected whitespace between attributes of <" + e.tag + ">");
-      const std::string name = parse_name("an attribute name");
-      skip_space();
-      if (at_end() || peek() != '=') fail("expected '=' after attribute '" + name + "'");
-      advance();
-      skip_space();
-      std::string value = parse_attribute_value();
-      if (e.attribute(name)) fail("duplicate attribute '" + name + "' in <" + e.tag + ">");
-      e.attributes.emplace_back(name, std::move(value));
+      case pugi::node_doctype: fail(n, "DOCTYPE declarations are not supported");
+      case pugi::node_cdata: fail(n, "CDATA sections are not supported");
+      default: break;
     }
-    parse_content(e);
+  }
+
+  XmlElement convert(pugi::xml_node n, int depth) const {
+    XmlElement e;
+    e.file = m_file;
+    e.line = line_of(size_t(n.offset_debug()) - 1);  // the '<' before the name
+    if (depth > kMaxDepth) throw ParseError("elements nested deeper than " + std::to_string(kMaxDepth), *m_file, e.line);
+    e.tag = n.name();
+    for (pugi::xml_attribute a : n.attributes()) {
+      if (e.attribute(a.name()))
+        fail(offset_of(a.name()), "duplicate attribute '" + quote(a.name()) + "' in <" + quote(e.tag) + ">");
+      std::string value, error;
+      size_t i = 0;
+      // An empty value may not point into the buffer; it needs no decoding anyway.
+      if (*a.value() && !decode_entities(a.value(), value, error, i)) fail(offset_of(a.value()) + i, error);
+      e.attributes.emplace_back(a.name(), std::move(value));
+    }
+    for (pugi::xml_node c : n.children()) {
+      check_misc(c);
+      if (c.type() == pugi::node_pcdata)
+        fail(c, "unexpected text inside <" + quote(e.tag) + "> (scene files carry values in attributes)");
+      if (c.type() == pugi::node_element) e.children.push_back(convert(c, depth + 1));
+    }
     return e;
   }
-  void parse_content(XmlElement& e) {
-    for (;;) {
-      if (at_end()) fail("element <" + e.tag + "> (line " + std::to_string(e.line) + ") is never closed");
-      const char c = peek();
-      if (is_space(c)) {
-        advance();
-      } else if (starts_with("<!--")) {
-        skip_comment();
-      } else if (starts_with("<![CDATA[")) {
-        fail("CDATA sections are not supported");
-      } else if (starts_with("<?")) {
-        skip_past("?>", "processing instruction");
-      } else if (starts_with("</")) {
-        advance(2);
-        const std::string name = parse_name("a closing tag name");
-        skip_space();
-        if (at_end() || peek() != '>') fail("expected '>' in closing tag </" + name + ">");
-        if (name != e.tag)
-          fail("closing tag </" + name + "> does not match <" + e.tag + "> (line " + std::to_string(e.line) + ")");
-        advance();
-        return;
-      } else if (c == '<') {
-        e.children.push_back(parse_element());
-      } else {
-        fail("unexpected text inside <" + e.tag + "> (scene files carry values in attributes)");
-      }
+
+  [[noreturn]] void fail_parse(const pugi::xml_parse_result& r) const {
+    const size_t at = std::min(size_t(r.offset), m_text.size());
+    std::string what;
+    switch (r.status) {
+      case pugi::status_end_element_mismatch: fail_mismatch(at);
+      case pugi::status_bad_comment:  // pugixml points at the end: report the comment's start
+        fail(std::min(at, m_text.rfind("<!--", at)), "unterminated comment");
+      case pugi::status_bad_cdata: fail(at, "CDATA sections are not supported");
+      case pugi::status_bad_doctype: fail(at, "DOCTYPE declarations are not supported");
+      case pugi::status_bad_attribute:
+        fail(at, "malformed attribute (values must be quoted, attributes separated by whitespace)");
+      case pugi::status_bad_pi: what = "invalid processing instruction"; break;
+      case pugi::status_bad_start_element: what = "invalid start tag"; break;
+      case pugi::status_bad_end_element: what = "invalid closing tag"; break;
+      case pugi::status_unrecognized_tag: what = "unrecognized tag"; break;
+      default: what = r.description(); break;
     }
+    if (at == m_text.size()) fail(at, what + " at the end of the input");
+    fail(at, what + " near '" + quote(std::string_view(m_text).substr(at)) + "'");
+  }
+
+  // pugixml reports a closing tag that does not match (offset at its name) or the end of
+  // the input with elements open (offset at the end), but not which element is open. To
+  // name it, parse the text up to that point followed by a probe element: the probe
+  // becomes the last child of the innermost open element.
+  [[noreturn]] void fail_mismatch(size_t at) const {
+    const bool closing_tag = at >= 2 && m_text.compare(at - 2, 2, "</") == 0;
+    std::string probe_text = m_text.substr(0, closing_tag ? at - 2 : m_text.size()) + "<probe/>\n";
+    pugi::xml_document doc;
+    doc.load_buffer_inplace(probe_text.data(), probe_text.size(), pugi::parse_fragment, pugi::encoding_utf8);
+    pugi::xml_node probe = doc;
+    while (probe.last_child()) probe = probe.last_child();
+    const pugi::xml_node open = probe.parent();
+    const std::string open_desc =
+        "<" + quote(open.name()) + "> (line " + std::to_string(line_of(size_t(open.offset_debug()))) + ")";
+    if (!closing_tag) fail(m_text.size(), "element " + open_desc + " is never closed");
+    std::string_view name = std::string_view(m_text).substr(at);
+    name = name.substr(0, name.find_first_of(" \t\r\n>"));
+    if (open == doc) fail(at, "unexpected content after the root element");
+    fail(at, "closing tag </" + quote(name) + "> does not match " + open_desc);
   }
 
   const std::string& m_text;
   std::shared_ptr<const std::string> m_file;
-  size_t m_pos = 0;
-  int m_line = 1;
+  std::vector<size_t> m_newlines;  // offsets of every '\n', ascending
+  std::vector<char> m_buf;         // the text pugixml parses in place (names and values point here)
 };
 
 }  // namespace
 
-XmlElement parse_xml(const std::string& text, const std::string& file) { return Parser(text, file).parse_document(); }
+XmlElement parse_xml(const std::string& text, const std::string& file) { return Reader(text, file).read(); }
 
 XmlElement parse_xml_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

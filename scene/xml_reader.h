@@ -1,11 +1,15 @@
-// A small, strict XML reader for scene files (no XML library is a dependency).
+// A small, strict XML reader for scene files, on top of pugixml (libpugixml-dev).
 // Supported: one root element, nested elements, attributes in single or double
-// quotes, self-closing tags, comments, the <?xml ...?> declaration (and other
+// quotes (values verbatim apart from entities: no whitespace or line-end
+// normalisation), self-closing tags, comments, the <?xml ...?> declaration (and other
 // processing instructions, skipped), the five predefined entities plus decimal and
-// hexadecimal character references (encoded as UTF-8). Rejected with a ParseError
-// carrying file and line: DOCTYPE, CDATA, non-whitespace text between elements,
-// mismatched or unclosed tags, duplicate attributes, unknown entities, anything after
-// the root element. Every element records the line of its '<'.
+// hexadecimal character references (encoded as UTF-8). The text is taken as UTF-8
+// whatever its declaration says. Rejected with a ParseError "file:line: malformed XML:
+// ..." (one line; quoted input cut to ~60 characters): DOCTYPE, CDATA, non-whitespace
+// text between elements, mismatched or unclosed tags, duplicate attributes, unknown
+// entities, '--' inside a comment, NUL bytes, anything after the root element, and
+// elements nested deeper than 256 (so that no recursive walk over the tree can
+// overflow the stack). Every element records the 1-based line of its '<'.
 #pragma once
 
 #include <memory>

@@ -13,3 +13,8 @@ dp_add_test(test_mitsuba_scenes
   DEPS deltapath_scene deltapath_integrators Boost::boost
   LABELS unit slow)
 set_tests_properties(test_mitsuba_scenes_unit test_mitsuba_scenes_slow PROPERTIES SKIP_RETURN_CODE 77)
+# The strict XML reader under the importer (pugixml plus the checks it adds).
+dp_add_test(test_xml_reader
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_xml_reader.cpp
+  DEPS deltapath_scene
+  LABELS unit)

@@ -1,7 +1,8 @@
-// Mitsuba importer unit tests: the XML reader, transforms, spectra, the .serialized
-// reader, $ substitution, include/ref resolution, every error class (typed error with
+// Mitsuba importer unit tests: transforms, spectra, the .serialized reader, $
+// substitution, include/ref resolution, every error class (typed error with
 // "file:line:"), harmless substitutions as one warning line each, and a YAML scene vs
-// its hand-written Mitsuba equivalent compared field by field.
+// its hand-written Mitsuba equivalent compared field by field. The XML reader has its
+// own tests in test_xml_reader.cpp.
 #include <catch2/catch.hpp>
 #include <zlib.h>
 
@@ -14,7 +15,6 @@
 #include "scene/mitsuba_loader.h"
 #include "scene/mitsuba_serialized.h"
 #include "scene/spectrum.h"
-#include "scene/xml_reader.h"
 #include "test_loader_util.h"
 
 using namespace dp;
@@ -97,61 +97,6 @@ std::string serialized_file(int version, const std::vector<std::string>& records
 }
 
 }  // namespace
-
-TEST_CASE("xml reader: elements, attributes, entities, comments, line numbers", "[unit]") {
-  const std::string text =
-      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
-      "<!-- a comment with <tags> & stuff -->\n"
-      "<root a=\"1\" b='x &lt; &amp;&gt; &quot;&apos; &#65;&#x42;'>\n"
-      "  <child/>\n"
-      "  <!-- inner -->\n"
-      "  <child k=\"v\">\n"
-      "    <leaf/>\n"
-      "  </child>\n"
-      "</root>\n";
-  const XmlElement root = parse_xml(text, "t.xml");
-  CHECK(root.tag == "root");
-  CHECK(root.line == 3);
-  REQUIRE(root.attribute("b"));
-  CHECK(*root.attribute("b") == "x < &> \"' AB");
-  REQUIRE(root.children.size() == 2);
-  CHECK(root.children[0].line == 4);
-  CHECK(root.children[1].line == 6);
-  CHECK(*root.children[1].attribute("k") == "v");
-  CHECK(root.children[1].children[0].tag == "leaf");
-  CHECK(root.children[1].children[0].line == 7);
-  CHECK(root.children[1].children[0].file_name() == "t.xml");
-}
-
-TEST_CASE("xml reader: malformed documents are ParseErrors with the line", "[unit]") {
-  struct Case {
-    std::string text;
-    int line;
-    std::string phrase;
-  };
-  const std::vector<Case> cases = {
-      {"<a>\n<b>\n</a>", 3, "does not match <b>"},
-      {"<a x=\"1\" x=\"2\"/>", 1, "duplicate attribute"},
-      {"<a x=\"&bogus;\"/>", 1, "unknown entity"},
-      {"<a>\n  text\n</a>", 2, "unexpected text"},
-      {"<a>\n<b>\n", 3, "never closed"},
-      {"<a/>\n<b/>", 2, "after the root element"},
-      {"<a x=1/>", 1, "must be quoted"},
-      {"<!DOCTYPE x>\n<a/>", 1, "DOCTYPE"},
-      {"<a>\n<!-- open\n", 2, "unterminated comment"},
-  };
-  for (const Case& c : cases) {
-    INFO(c.text);
-    try {
-      parse_xml(c.text, "bad.xml");
-      FAIL("no error");
-    } catch (const ParseError& e) {
-      CHECK(e.line() == c.line);
-      CHECK_THAT(std::string(e.what()), Contains("bad.xml:" + std::to_string(c.line) + ": "));
-      CHECK_THAT(std::string(e.what()), Contains(c.phrase));
-    }
-  }
-}
 
 TEST_CASE("mitsuba: a lookat and the equivalent matrix give the same camera", "[unit]") {
   auto camera_of = [](const std::string& xf) {
