@@ -113,6 +113,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
   ExperimentResult out;
   out.output_dir = config.output;
   const auto scene = scene::load_scene(config.scene, {manifold::normal_estimation_hook()});
+  if (options.scene_loaded) options.scene_loaded();
   const int max_depth = scene->integrator_defaults().max_depth;
   const auto& cam = scene->camera();
   for (const auto& c : config.crops)
