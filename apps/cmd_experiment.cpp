@@ -1,15 +1,15 @@
 // `deltapath experiment FILE [--out DIR] [--threads T] [--no-plot] [--quiet]`: renders
 // every (run, budget, seed) point of an experiment file, skipping finished points, and
 // writes results.csv, the convergence plot and report.html into the output folder.
-// Ctrl-C stops at the next tile boundary; the interrupted point is not kept.
+// SIGINT/SIGTERM stop at the next tile boundary; the interrupted point is not kept (the
+// finished ones are, and a re-run resumes) and deltapath exits 128 + signal.
 #include "apps/cmd_experiment.h"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
 #include "apps/cli_checks.h"
+#include "apps/interrupt.h"
 #include "core/log.h"
 #include "experiments/config.h"
 #include "experiments/runner.h"
@@ -17,9 +17,6 @@
 namespace dp::apps {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint_experiment(int) { g_interrupted.store(true); }
-
 struct ExperimentArgs {
   std::string file, out;
   int threads = 0;
@@ -28,16 +25,16 @@ struct ExperimentArgs {
 
 void run(const ExperimentArgs& a) {
   if (a.quiet) log::set_level(log::Level::warn);
+  set_early_exit_message("interrupted while loading the experiment; nothing written");
   experiments::ExperimentConfig config = experiments::parse_experiment(a.file);
   if (!a.out.empty()) config.output = std::filesystem::path(a.out).lexically_normal().string();
   experiments::RunnerOptions opt;
   opt.render.threads = a.threads;
   opt.render.quiet = a.quiet;
-  opt.render.stop = &g_interrupted;
+  opt.render.stop = stop_flag();
+  opt.scene_loaded = enable_graceful_stop;
   opt.plot = !a.no_plot;
-  auto previous = std::signal(SIGINT, on_sigint_experiment);
   const experiments::ExperimentResult r = experiments::run_experiment(config, opt);
-  std::signal(SIGINT, previous);
   std::printf("experiment %s: %zu points rendered, %zu already done\n", config.name.c_str(), r.rendered, r.skipped);
   std::printf("  csv:    %s\n", r.csv_path.c_str());
   std::printf("  plot:   %s\n", r.plot_png.empty() ? "(none)" : r.plot_png.c_str());

@@ -1,13 +1,14 @@
 // `deltapath render SCENE ...`: renders a scene and writes FILE.exr (all layers),
 // FILE.png (preview of the final image) and FILE.json (resolved settings, seed, wall
-// time, samples, counters, partial flag). Ctrl-C stops at the next tile boundary and
-// keeps what was rendered.
-#include <csignal>
+// time, samples, counters, partial flag). SIGINT/SIGTERM (apps/interrupt.h) stop at the
+// next tile boundary and keep what was rendered, marked partial; main then exits 128 +
+// signal. A signal while the scene loads exits at once with nothing written.
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "apps/cli_checks.h"
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "apps/output.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -20,9 +21,6 @@
 namespace dp::apps {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
-
 struct RenderArgs {
   std::string scene, integrator, out = "render.exr";
   int spp = 0, threads = 0, max_depth = 0;
@@ -34,9 +32,11 @@ struct RenderArgs {
 
 void run_render(const RenderArgs& a) {
   if (a.quiet) log::set_level(log::Level::warn);
+  set_early_exit_message("interrupted while loading the scene; nothing written");
   core::Timer load_timer;
   const auto scene = scene::load_scene(a.scene, {manifold::normal_estimation_hook()});
   const double load_seconds = load_timer.seconds();
+  enable_graceful_stop();  // from here a first signal stops the render and keeps it
   const auto& defaults = scene->integrator_defaults();
 
   integrators::Settings settings;
@@ -56,15 +56,27 @@ void run_render(const RenderArgs& a) {
   opt.threads = a.threads;
   opt.max_depth = a.max_depth > 0 ? a.max_depth : defaults.max_depth;
   opt.quiet = a.quiet;
-  opt.stop = &g_interrupted;
+  opt.stop = stop_flag();
   if (opt.max_depth < 1) throw ValueError("--max-depth must be >= 1", "command line");
   if (a.time < 0) throw ValueError("--time must be positive", "command line");
 
   log::info("rendering ", a.scene, " with ", name, " (", scene->camera().width(), "x", scene->camera().height(),
             a.time > 0 ? ", " + std::to_string(a.time) + " s" : ", " + std::to_string(opt.spp) + " spp", ")");
-  auto previous = std::signal(SIGINT, on_sigint);
   integrators::RenderResult result = integrator->render(*scene, opt);
-  std::signal(SIGINT, previous);
+  // A signal after the last sample (e.g. during a gradient integrator's reconstruction)
+  // still makes the result partial: the user asked to stop, the files say it was stopped.
+  const int sig = received_signal();
+  if (sig) result.partial = true;
+  if (result.max_spp == 0 && (sig || a.time > 0)) {  // not one sample: a black image would be a lie
+    if (sig) {
+      log::warn("render interrupted by ", signal_name(sig), " before any sample was taken; nothing written");
+      return;
+    }
+    char budget[32];
+    std::snprintf(budget, sizeof(budget), "%g", a.time);
+    throw Error(std::string("no samples were taken within --time ") + budget + "; nothing written (give a longer --time)",
+                "command line");
+  }
   if (result.partial) log::warn("render interrupted: writing the ", result.min_spp, "..", result.max_spp, " spp rendered so far");
 
   core::Json side = core::Json::object();
@@ -77,8 +89,11 @@ void run_render(const RenderArgs& a) {
   side["spp_requested"] = a.time > 0 ? core::Json(nullptr) : core::Json(opt.spp);
   side["time_budget"] = a.time > 0 ? core::Json(a.time) : core::Json(nullptr);
   side["load_seconds"] = load_seconds;
+  side["interrupted_by"] = sig ? core::Json(signal_name(sig)) : core::Json(nullptr);
   write_render_outputs(a.out, result, side);
-  log::info("wrote ", a.out, " (", result.wall_seconds, " s, ", result.min_spp, " spp)");
+  if (sig)
+    log::warn("wrote partial ", a.out, " (", result.min_spp, " spp); exiting with status ", interrupted_exit_status());
+  else log::info("wrote ", a.out, " (", result.wall_seconds, " s, ", result.min_spp, " spp)");
 }
 }  // namespace
 

@@ -5,9 +5,9 @@
 #include "apps/cmd_stress.h"
 
 #include <cstdio>
-#include <fstream>
 
 #include "apps/cli_checks.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "experiments/stress.h"
 
@@ -22,11 +22,7 @@ struct StressArgs {
 void run(const StressArgs& a) {
   const experiments::StressReport report = experiments::run_stress(a.options);
   std::printf("%s", experiments::format_stress_report(report).c_str());
-  if (!a.csv.empty()) {
-    std::ofstream f(a.csv);
-    if (!f) throw IoError("cannot write", a.csv);
-    f << experiments::stress_csv(report);
-  }
+  if (!a.csv.empty()) core::write_file_atomically(a.csv, experiments::stress_csv(report));
   if (report.nonfinite_pixels() > 0)
     throw Error("stress: " + std::to_string(report.nonfinite_pixels()) + " non-finite pixel values reached image buffers");
   std::printf("stress: OK, no non-finite value reached an image buffer\n");

@@ -2,8 +2,7 @@
 
 #include <sys/resource.h>
 
-#include <fstream>
-
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/log.h"
 
@@ -51,10 +50,7 @@ void write_render_outputs(const std::string& exr_path, integrators::RenderResult
   for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
   sidecar["counters"] = counters;
   sidecar["info"] = result.info;
-  const std::string json_path = sibling_path(exr_path, ".json");
-  std::ofstream f(json_path);
-  if (!f) throw IoError("cannot write", json_path);
-  f << sidecar.dump();
+  core::write_file_atomically(sibling_path(exr_path, ".json"), sidecar.dump());
 }
 
 }  // namespace dp::apps

@@ -2,7 +2,8 @@
 // channels R, G, B, every other layer as "<layer>.R", "<layer>.G", "<layer>.B" (the
 // OpenEXR convention). PNG: 8-bit sRGB preview, values clamped to [0,1] after an
 // optional exposure scale. LDR reads (PNG/JPEG) are decoded sRGB -> linear.
-// All functions throw dp::IoError naming the file on failure.
+// All functions throw dp::IoError naming the file on failure. Writes go through
+// core/atomic_write.h: a killed process leaves the old file or none, never a truncated one.
 #pragma once
 
 #include <string>

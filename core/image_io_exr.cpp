@@ -7,6 +7,7 @@
 
 #include <map>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -36,9 +37,14 @@ void write_exr(const std::string& path, const std::vector<NamedLayer>& layers) {
         fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Rgb), sizeof(Rgb) * size_t(w)));
       }
     }
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(fb);
-    file.writePixels(h);
+    // The file is closed (OutputFile's destructor) before write_atomically renames it.
+    write_atomically(path, [&](const std::string& tmp) {
+      Imf::OutputFile file(tmp.c_str(), header);
+      file.setFrameBuffer(fb);
+      file.writePixels(h);
+    });
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {
     throw IoError(std::string("cannot write EXR: ") + e.what(), path);
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -29,7 +30,9 @@ void write_png(const std::string& path, const Image& image, float exposure_scale
       bytes[i * 3 + size_t(c)] = static_cast<unsigned char>(std::clamp(v * 255.0f + 0.5f, 0.0f, 255.0f));
     }
   }
-  if (!stbi_write_png(path.c_str(), w, h, 3, bytes.data(), w * 3)) throw IoError("cannot write PNG", path);
+  write_atomically(path, [&](const std::string& tmp) {
+    if (!stbi_write_png(tmp.c_str(), w, h, 3, bytes.data(), w * 3)) throw IoError("cannot write PNG", path);
+  });
 }
 
 Image read_ldr(const std::string& path, bool linear) {

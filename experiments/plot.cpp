@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "core/log.h"
 
 #ifndef DP_EXPERIMENTS_SOURCE_DIR
@@ -44,12 +45,20 @@ std::string make_convergence_plot(const std::string& csv, const std::string& out
     log::warn("no convergence plot: no python3 with matplotlib found (Debian: python3-matplotlib; or set DP_PYTHON)");
     return {};
   }
-  const std::string png = out_prefix + ".png";
+  // The script writes PREFIX.tmp-<pid>.png/.svg, renamed into place once it succeeded:
+  // a plot killed half-way never leaves a truncated PREFIX.png.
+  const std::string png = out_prefix + ".png", svg = out_prefix + ".svg";
+  const std::string tmp = core::temp_path(out_prefix);
   std::error_code ec;
   std::filesystem::remove(png, ec);
   const std::string cmd = shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(csv) + " --out " +
-                          shell_quote(out_prefix) + " --title " + shell_quote(title);
-  if (std::system(cmd.c_str()) != 0 || !std::filesystem::exists(png)) {
+                          shell_quote(tmp) + " --title " + shell_quote(title);
+  const bool ok = std::system(cmd.c_str()) == 0 && std::filesystem::exists(tmp + ".png");
+  if (ok) std::filesystem::rename(tmp + ".png", png, ec);
+  if (ok && !ec && std::filesystem::exists(tmp + ".svg")) std::filesystem::rename(tmp + ".svg", svg, ec);
+  std::filesystem::remove(tmp + ".png", ec);
+  std::filesystem::remove(tmp + ".svg", ec);
+  if (!ok || !std::filesystem::exists(png)) {
     log::warn("no convergence plot: '", cmd, "' failed");
     return {};
   }

@@ -77,9 +77,7 @@ Reference obtain_reference(const ExperimentConfig& config, const scene::Scene& s
     throw ValueError("reference render has " + std::to_string(bad) + " non-finite pixels", config.file,
                      config.reference.line);
   std::filesystem::create_directories(cache_dir);
-  const std::string tmp = ref.path + ".tmp.exr";
-  core::write_exr(tmp, ref.image);
-  std::filesystem::rename(tmp, ref.path);
+  core::write_exr(ref.path, ref.image);  // atomic: a killed run leaves no truncated cache entry
   log::info("reference: rendered in ", timer.seconds(), " s");
   ref.rendered = true;
   return ref;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "experiments/scoring.h"
@@ -219,9 +220,7 @@ std::string write_report(const ExperimentConfig& config, const ExperimentResult&
   h += "</table>\n</body>\n</html>\n";
 
   const std::string path = (dir / "report.html").string();
-  std::ofstream f(path, std::ios::binary);
-  if (!f) throw IoError("cannot write", path);
-  f << h;
+  core::write_file_atomically(path, h);
   return path;
 }
 

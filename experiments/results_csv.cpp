@@ -1,9 +1,7 @@
 #include "experiments/results_csv.h"
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-
+#include "core/atomic_write.h"
 #include "core/error.h"
 
 namespace dp::experiments {
@@ -37,14 +35,7 @@ std::string results_csv_text(const ExperimentConfig& config, const std::vector<P
 }
 
 void write_results_csv(const std::string& path, const ExperimentConfig& config, const std::vector<PointResult>& points) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw IoError("cannot write", tmp);
-    f << results_csv_text(config, points);
-    if (!f) throw IoError("write failed", tmp);
-  }
-  std::filesystem::rename(tmp, path);
+  core::write_file_atomically(path, results_csv_text(config, points));
 }
 
 }  // namespace dp::experiments

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json.h"
@@ -54,15 +55,10 @@ std::optional<Marker> read_marker(const std::string& path) {
 }
 
 void write_marker(const std::string& path, const Marker& m) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw IoError("cannot write", tmp);
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.17g", m.wall_time);
-    f << "key " << m.key << "\nwall_time " << buf << "\nspp " << m.spp << "\nlayer " << m.layer << "\n";
-  }
-  fs::rename(tmp, path);
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.17g", m.wall_time);
+  core::write_file_atomically(path, "key " + m.key + "\nwall_time " + buf + "\nspp " + std::to_string(m.spp) +
+                                        "\nlayer " + m.layer + "\n");
 }
 
 std::string read_file(const std::string& path) {
@@ -117,6 +113,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
   ExperimentResult out;
   out.output_dir = config.output;
   const auto scene = scene::load_scene(config.scene, {manifold::normal_estimation_hook()});
+  if (options.scene_loaded) options.scene_loaded();
   const int max_depth = scene->integrator_defaults().max_depth;
   const auto& cam = scene->camera();
   for (const auto& c : config.crops)
@@ -240,11 +237,7 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
           for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
           side["counters"] = counters;
           side["info"] = result.info;
-          {
-            std::ofstream f(stem + ".json");
-            if (!f) throw IoError("cannot write", stem + ".json");
-            f << side.dump();
-          }
+          core::write_file_atomically(stem + ".json", side.dump());
           write_marker(stem + ".done", Marker{key, p.layer, p.wall_time, p.spp});
           layers = std::move(result.layers);
           eta.add(r, budget, p.wall_time);

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct RunnerOptions {
   bool plot = true;    // run plot_convergence.py
   bool report = true;  // write report.html
   bool progress = true;  // one progress line per point on stderr
+  // Called once the scene is loaded (the CLI switches SIGINT/SIGTERM from "exit now" to
+  // "stop the render", apps/interrupt.h). May be empty.
+  std::function<void()> scene_loaded;
 };
 
 struct PointResult {

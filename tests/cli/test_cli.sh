@@ -59,18 +59,21 @@ printf 'version: 1\ncamera: {position: [0,0,0], look_at: [0,0,1], fov: 45, resol
 code=$?
 check "65536 x 65536 film exits 1 (got $code)" test $code -eq 1
 check "65536 x 65536 film error is one line naming file:line" grep -q "huge.yaml:2:.*resolution" "$tmp/err"
-# A time budget below one pass: whatever was rendered, marked partial.
+# A time budget below one sample is an error (exit 1, nothing written), not a black image.
 "$bin" render scenes/cornell.yaml --time 1e-9 --quiet --out "$tmp/tiny.exr" 2>"$tmp/err"
-check "tiny time budget exits 0" test $? -eq 0
-check "tiny time budget is marked partial" grep -q '"partial": true' "$tmp/tiny.json"
+check "tiny time budget exits 1" test $? -eq 1
+check "tiny time budget says no samples were taken" grep -q "no samples were taken within --time 1e-09" "$tmp/err"
+check "tiny time budget writes nothing" test ! -e "$tmp/tiny.exr" -a ! -e "$tmp/tiny.json"
 
-# 3. Ctrl-C stops at a tile boundary and writes what was rendered, marked partial.
+# 3. Ctrl-C stops at a tile boundary, writes what was rendered, marked partial, and exits
+#    130 (more signal cases: test_interrupt.sh).
 "$bin" render scenes/cornell.yaml --time 60 --threads 2 --quiet --out "$tmp/int.exr" 2>"$tmp/err" &
 pid=$!
 sleep 2
 kill -INT $pid
 wait $pid
-check "interrupted render exits 0" test $? -eq 0
+code=$?
+check "interrupted render exits 130 (got $code)" test $code -eq 130
 check "interrupted render writes images" test -s "$tmp/int.exr" -a -s "$tmp/int.png"
 check "interrupted render is marked partial" grep -q '"partial": true' "$tmp/int.json"
 
