@@ -4,9 +4,12 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "core/number_syntax.h"
 
 namespace dp::apps {
 
@@ -28,14 +31,9 @@ inline const CLI::Validator& path_depth() {
 inline const CLI::Validator& seconds() {
   static const CLI::Validator v(
       [](std::string& s) -> std::string {
-        size_t used = 0;
-        double t = 0;
-        try {
-          t = std::stod(s, &used);
-        } catch (...) {
-          return "expects a number of seconds, got '" + s.substr(0, 40) + "'";
-        }
-        if (used != s.size()) return "expects a number of seconds, got '" + s.substr(0, 40) + "'";
+        if (!core::is_decimal_number(s))  // also rejects hex, which std::stod reads
+          return "expects a number of seconds, got '" + s.substr(0, 40) + (s.size() > 40 ? "...'" : "'");
+        const double t = std::strtod(s.c_str(), nullptr);  // inf on overflow (std::stod throws)
         if (!std::isfinite(t) || !(t > 0.0) || t > 3.2e7) return "must be a finite number of seconds in (0, 3.2e7]";
         return std::string();
       },

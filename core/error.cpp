@@ -7,11 +7,20 @@ namespace dp {
 
 namespace {
 std::string format_error(const std::string& message, const std::string& file, int line) {
-  if (file.empty()) return message;
-  if (line <= 0) return file + ": " + message;
-  return file + ":" + std::to_string(line) + ": " + message;
+  const std::string m = quote_input(message, 1000);
+  if (file.empty()) return m;
+  const std::string f = quote_input(file, 200);
+  if (line <= 0) return f + ": " + m;
+  return f + ":" + std::to_string(line) + ": " + m;
 }
 }  // namespace
+
+std::string quote_input(std::string_view text, size_t max) {
+  std::string out(text.substr(0, max));
+  for (char& c : out)
+    if ((unsigned char)c < 0x20 || c == 0x7f) c = (c == '\n' || c == '\t') ? ' ' : '?';
+  return text.size() > max ? out + "..." : out;
+}
 
 Error::Error(const std::string& message, std::string file, int line)
     : std::runtime_error(format_error(message, file, line)),

@@ -1,11 +1,14 @@
 // Typed errors and internal checks.
 // `dp::Error` is what a user can cause (scene, config, CLI, files): it carries the file
-// and line it refers to and prints as one line "file:line: message". `DP_CHECK` guards
+// and line it refers to and prints as one line "file:line: message" (a backstop keeps
+// it short: the file name is cut to 200 characters, the message to 1000, line breaks
+// become spaces; callers still quote user input with quote_input). `DP_CHECK` guards
 // internal invariants and is always on; `DP_DCHECK` only in debug builds.
 #pragma once
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace dp {
 
@@ -37,6 +40,10 @@ class ValueError : public Error {
  public:
   using Error::Error;
 };
+
+// `text` (user input: a value, a name, a line of a file) for quoting in a one-line
+// message: at most `max` characters, then "...", control characters shown as '?'.
+std::string quote_input(std::string_view text, size_t max = 60);
 
 [[noreturn]] void check_failed(const char* expr, const char* file, int line, const std::string& msg);
 

@@ -2,8 +2,11 @@
 
 #include <exception>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include "core/error.h"
 
 namespace dp::core {
 
@@ -36,7 +39,16 @@ void parallel_for(int64_t count, int threads, const std::function<void(int64_t, 
     worker(0);
   } else {
     std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker, t);
+    try {
+      for (int t = 0; t < threads; ++t) pool.emplace_back(worker, t);
+    } catch (const std::exception& e) {  // std::system_error, or bad_alloc growing `pool`
+      // A thread that cannot start (thread or memory limit): stop and join the ones
+      // that did, since destroying a joinable std::thread calls std::terminate.
+      next.store(count);
+      for (auto& t : pool) t.join();
+      throw Error("cannot start worker thread " + std::to_string(pool.size() + 1) + " of " + std::to_string(threads) +
+                  " (" + e.what() + "); try fewer --threads");
+    }
     for (auto& t : pool) t.join();
   }
   if (error) std::rethrow_exception(error);

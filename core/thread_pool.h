@@ -14,7 +14,9 @@ int hardware_threads();
 
 // Calls fn(item, thread) for item in [0, count). Items are handed out in order; once
 // `stop` (if given) becomes true, no further items start. Exceptions thrown by fn are
-// rethrown on the calling thread after all workers have finished.
+// rethrown on the calling thread after all workers have finished. If a worker thread
+// cannot be started (system thread or memory limit), the started ones are joined and a
+// dp::Error says so (no item runs after that; items already done stay done).
 void parallel_for(int64_t count, int threads, const std::function<void(int64_t item, int thread)>& fn,
                   const std::atomic<bool>* stop = nullptr);
 

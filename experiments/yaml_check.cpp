@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/number_syntax.h"
 
 namespace dp::experiments::yamlx {
 
@@ -77,12 +78,12 @@ double get_number(const Ctx& ctx, const YAML::Node& node, const std::string& nam
   std::string lower;
   for (char c : s) lower += char(std::tolower(static_cast<unsigned char>(c)));
   if (lower.find("inf") != std::string::npos || lower.find("nan") != std::string::npos)
-    value_error(ctx, node, "'" + name + "': not a finite number (" + s + ")");
+    value_error(ctx, node, "'" + name + "': not a finite number (" + quote_input(s) + ")");
+  if (!core::is_decimal_number(s))  // std::strtod alone would also read hex ("0x10")
+    parse_error(ctx, node, "'" + name + "': expected a number, got '" + quote_input(s) + "'");
   errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size()) parse_error(ctx, node, "'" + name + "': expected a number, got '" + s + "'");
-  if (errno == ERANGE || !std::isfinite(v)) value_error(ctx, node, "'" + name + "': not a finite number (" + s + ")");
+  const double v = std::strtod(s.c_str(), nullptr);
+  if (errno == ERANGE || !std::isfinite(v)) value_error(ctx, node, "'" + name + "': not a finite number (" + quote_input(s) + ")");
   return v;
 }
 
@@ -92,8 +93,9 @@ long long get_integer(const Ctx& ctx, const YAML::Node& node, const std::string&
   errno = 0;
   char* end = nullptr;
   const long long v = std::strtoll(s.c_str(), &end, 10);
-  if (s.empty() || end != s.c_str() + s.size()) parse_error(ctx, node, "'" + name + "': expected an integer, got '" + s + "'");
-  if (errno == ERANGE) value_error(ctx, node, "'" + name + "': integer out of range (" + s + ")");
+  if (s.empty() || end != s.c_str() + s.size())
+    parse_error(ctx, node, "'" + name + "': expected an integer, got '" + quote_input(s) + "'");
+  if (errno == ERANGE) value_error(ctx, node, "'" + name + "': integer out of range (" + quote_input(s) + ")");
   return v;
 }
 

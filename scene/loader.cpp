@@ -16,7 +16,7 @@ std::unique_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".yaml" || ext == ".yml") return load_scene_yaml(path, options);
   if (ext == ".xml") return load_scene_mitsuba(path);
-  throw IoError("unknown scene file type '" + ext + "' (expected .yaml, .yml or .xml)", path);
+  throw IoError("unknown scene file type '" + quote_input(ext) + "' (expected .yaml, .yml or .xml)", path);
 }
 
 }  // namespace dp::scene

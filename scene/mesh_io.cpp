@@ -14,7 +14,7 @@ std::unique_ptr<TriangleMesh> load_mesh(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".obj") return load_obj(path);
   if (ext == ".ply") return load_ply(path);
-  throw IoError("unsupported mesh format '" + ext + "' (expected .obj or .ply)", path);
+  throw IoError("unsupported mesh format '" + quote_input(ext) + "' (expected .obj or .ply)", path);
 }
 
 }  // namespace dp::scene

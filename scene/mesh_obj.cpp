@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/read_file.h"
 #include "scene/mesh_io.h"
 
 namespace dp::scene {
@@ -37,14 +38,14 @@ std::string trim(std::string s) {
 }  // namespace
 
 std::unique_ptr<TriangleMesh> load_obj(const std::string& path) {
-  if (!std::ifstream(path).good()) throw IoError("cannot open mesh file", path);
+  core::check_readable_file(path, "mesh file");
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
     const std::string msg = trim(reader.Error());
-    throw ParseError("cannot parse OBJ: " + (msg.empty() ? std::string("unknown error") : msg), path);
+    throw ParseError("cannot parse OBJ: " + (msg.empty() ? std::string("unknown error") : quote_input(msg, 200)), path);
   }
   if (!reader.Warning().empty()) log::debug(path, ": ", trim(reader.Warning()));
 
@@ -98,7 +99,7 @@ std::unique_ptr<TriangleMesh> load_obj(const std::string& path) {
     size_t offset = 0;
     for (const auto face_size : shape.mesh.num_face_vertices) {
       const size_t fv = size_t(face_size);
-      if (offset + fv > indices.size()) throw ParseError("inconsistent face data in '" + shape.name + "'", path);
+      if (offset + fv > indices.size()) throw ParseError("inconsistent face data in '" + quote_input(shape.name) + "'", path);
       // Fan triangulation covers polygons tinyobjloader left untriangulated.
       for (size_t k = 1; k + 1 < fv; ++k)
         mesh->triangles.push_back(

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/read_file.h"
 #include "scene/mesh_io.h"
 
 namespace dp::scene {
@@ -96,8 +97,8 @@ Header parse_header(const std::string& data, const std::string& path) {
       if (fmt == "ascii") h.format = Format::ascii;
       else if (fmt == "binary_little_endian") h.format = Format::binary_le;
       else if (fmt == "binary_big_endian") h.format = Format::binary_be;
-      else throw ParseError("unknown PLY format '" + fmt + "'", path, line);
-      if (version != "1.0") throw ParseError("unsupported PLY version '" + version + "'", path, line);
+      else throw ParseError("unknown PLY format '" + quote_input(fmt) + "'", path, line);
+      if (version != "1.0") throw ParseError("unsupported PLY version '" + quote_input(version) + "'", path, line);
       have_format = true;
     } else if (kw == "element") {
       Element e;
@@ -106,7 +107,7 @@ Header parse_header(const std::string& data, const std::string& path) {
       char* end = nullptr;
       const unsigned long long c = std::strtoull(count.c_str(), &end, 10);
       if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
-        throw ParseError("malformed element line '" + text + "'", path, line);
+        throw ParseError("malformed element line '" + quote_input(text) + "'", path, line);
       e.count = size_t(c);
       h.elements.push_back(std::move(e));
     } else if (kw == "property") {
@@ -119,10 +120,10 @@ Header parse_header(const std::string& data, const std::string& path) {
         ls >> ct >> it >> p.name;
         p.is_list = true;
         if (!parse_type(ct, p.count_type) || !is_integer(p.count_type) || !parse_type(it, p.type))
-          throw ParseError("malformed list property '" + text + "'", path, line);
+          throw ParseError("malformed list property '" + quote_input(text) + "'", path, line);
       } else {
         ls >> p.name;
-        if (!parse_type(t, p.type)) throw ParseError("unknown property type '" + t + "'", path, line);
+        if (!parse_type(t, p.type)) throw ParseError("unknown property type '" + quote_input(t) + "'", path, line);
       }
       if (p.name.empty()) throw ParseError("property without a name", path, line);
       h.elements.back().props.push_back(p);
@@ -132,7 +133,7 @@ Header parse_header(const std::string& data, const std::string& path) {
       h.body_line = line + 1;
       return h;
     } else {
-      throw ParseError("unexpected PLY header line '" + text + "'", path, line);
+      throw ParseError("unexpected PLY header line '" + quote_input(text) + "'", path, line);
     }
   }
 }
@@ -164,8 +165,8 @@ class BodyReader {
     const std::string tok = m_data.substr(m_pos, end - m_pos);
     char* stop = nullptr;
     const double v = std::strtod(tok.c_str(), &stop);
-    if (*stop != '\0') fail("expected a number, got '" + tok + "'");
-    if (is_integer(t) && v != std::floor(v)) fail("expected an integer, got '" + tok + "'");
+    if (*stop != '\0') fail("expected a number, got '" + quote_input(tok) + "'");
+    if (is_integer(t) && v != std::floor(v)) fail("expected an integer, got '" + quote_input(tok) + "'");
     m_pos = end;
     return v;
   }
@@ -209,12 +210,7 @@ int find_prop(const Element& e, std::initializer_list<const char*> names) {
 }  // namespace
 
 std::unique_ptr<TriangleMesh> load_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open mesh file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError("cannot read mesh file", path);
-  const std::string data = ss.str();
+  const std::string data = core::read_file(path, "mesh file");
   const Header h = parse_header(data, path);
   BodyReader body(data, h, path);
 
@@ -225,7 +221,7 @@ std::unique_ptr<TriangleMesh> load_ply(const std::string& path) {
     // Each instance takes at least one byte per property (binary) or two (ascii): a
     // cheap guard against corrupt counts before reserving memory.
     if (!e.props.empty() && e.count > body.remaining() / e.props.size())
-      body.fail("element '" + e.name + "' declares " + std::to_string(e.count) + " entries, more than the file holds");
+      body.fail("element '" + quote_input(e.name) + "' declares " + std::to_string(e.count) + " entries, more than the file holds");
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
     int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1, ilist = -1;
     if (is_vertex) {
@@ -261,7 +257,7 @@ std::unique_ptr<TriangleMesh> load_ply(const std::string& path) {
           continue;
         }
         const double n = body.read(prop.count_type);
-        if (n < 0) body.fail("negative list length in element '" + e.name + "'");
+        if (n < 0) body.fail("negative list length in element '" + quote_input(e.name) + "'");
         const bool indices = int(p) == ilist;
         if (indices) {
           if (n < 3) body.fail("face " + std::to_string(k) + " has " + std::to_string(int(n)) + " vertices (at least 3 needed)");

@@ -42,7 +42,7 @@ MicrofacetType distribution(Object& o) {
     o.loader().warn(*at, "microfacet distribution 'phong' approximated by 'beckmann' with the same alpha");
     return MicrofacetType::beckmann;
   }
-  o.error_at(at ? *at : o.elem(), "unsupported microfacet distribution '" + d + "' (beckmann, ggx)");
+  o.error_at(at ? *at : o.elem(), "unsupported microfacet distribution '" + quote_input(d) + "' (beckmann, ggx)");
 }
 
 void alphas(Object& o, float& au, float& av) {
@@ -74,7 +74,7 @@ BsdfPtr conductor(Object& o, bool rough) {
   const std::string material = o.get_string("material", "Cu");
   const std::optional<ConductorIor> named = named_conductor(material);
   if (!named)
-    o.error_at(mat_at ? *mat_at : o.elem(), "unknown conductor material '" + material + "' (" + conductor_names() + ")");
+    o.error_at(mat_at ? *mat_at : o.elem(), "unknown conductor material '" + quote_input(material) + "' (" + conductor_names() + ")");
   ConductorFresnel f;
   if (material == "none" && !o.has("eta") && !o.has("k")) {
     f.kind = ConductorFresnel::Kind::schlick;  // Mitsuba's "none": a perfect mirror
@@ -144,7 +144,7 @@ BsdfPtr build_bsdf(Loader& ld, const XmlElement& e) {
     if (inner.size() != 1) o.error("twosided needs exactly one nested <bsdf> (different front and back BSDFs are not supported)");
     BsdfPtr in = ld.bsdf(*inner[0]);
     if (in->lobes() & kTransmission) {
-      ld.warn(e, "twosided around the transmissive '" + in->name() + "' dropped (it already has two sides)");
+      ld.warn(e, "twosided around the transmissive '" + quote_input(in->name()) + "' dropped (it already has two sides)");
       b = in;
     } else {
       b = make_two_sided(in);

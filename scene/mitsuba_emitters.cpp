@@ -15,14 +15,19 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "scene/limits.h"
 #include "scene/mitsuba_detail.h"
 
 namespace dp::scene::mitsuba {
 
 namespace {
 
-Vec3 apply_point(const Mat4d& m, const Vec3& p) {
-  return (m.block<3, 3>(0, 0) * p.cast<double>() + m.block<3, 1>(0, 3)).cast<float>();
+Vec3 apply_point(Object& o, const Mat4d& m, const Vec3& p) {
+  const Vec3d w = m.block<3, 3>(0, 0) * p.cast<double>() + m.block<3, 1>(0, 3);
+  if (!(w.cwiseAbs().maxCoeff() <= kMaxSceneMagnitude))
+    o.value_error_at(o.elem(), std::string("light position beyond the scene limit (coordinates at most ") +
+                                   kMaxSceneMagnitudeText + " in magnitude, after its to_world)");
+  return w.cast<float>();
 }
 
 Vec3 z_axis(Object& o, const Mat4d& m) {
@@ -34,7 +39,7 @@ Vec3 z_axis(Object& o, const Mat4d& m) {
 Rgb nonnegative(Object& o, const std::string& name, const Rgb& def) {
   const XmlElement* at = o.take(name);
   const Rgb c = o.get_rgb(name, def);
-  if (!(c >= 0.0f).all()) o.value_error_at(at ? *at : o.elem(), "'" + name + "' must be >= 0");
+  if (!(c >= 0.0f).all()) o.value_error_at(at ? *at : o.elem(), "'" + quote_input(name) + "' must be >= 0");
   return c;
 }
 
@@ -58,12 +63,12 @@ EmitterPtr envmap(Loader& ld, Object& o) {
   try {
     image = core::read_image(ld.resolve_path(*fn, file));
   } catch (const Error& e) {
-    throw IoError("cannot read environment map '" + file + "': " + e.message(), fn->file_name(), fn->line);
+    throw IoError("cannot read environment map '" + quote_input(file) + "': " + e.message(), fn->file_name(), fn->line);
   }
-  if (image.empty()) throw IoError("environment map '" + file + "' is empty", fn->file_name(), fn->line);
+  if (image.empty()) throw IoError("environment map '" + quote_input(file) + "' is empty", fn->file_name(), fn->line);
   for (const Rgb& c : image.pixels())
     if (!is_finite(c) || (c < 0.0f).any())
-      throw ValueError("environment map '" + file + "' has negative or non-finite pixels", fn->file_name(), fn->line);
+      throw ValueError("environment map '" + quote_input(file) + "' has negative or non-finite pixels", fn->file_name(), fn->line);
   return std::make_unique<EnvironmentEmitter>(std::move(image), r.cast<float>(), scale);
 }
 
@@ -76,7 +81,7 @@ void build_emitter(Loader& ld, const XmlElement& e) {
   if (t == "point") {
     const Mat4d m = o.get_transform("to_world");
     const Vec3 p = o.get_point("position", Vec3::Zero());
-    em = std::make_unique<PointEmitter>(apply_point(m, p), nonnegative(o, "intensity", Rgb::Ones()));
+    em = std::make_unique<PointEmitter>(apply_point(o, m, p), nonnegative(o, "intensity", Rgb::Ones()));
   } else if (t == "spot") {
     const Mat4d m = o.get_transform("to_world");
     const float cutoff = o.get_float("cutoff_angle", 20.0f);
@@ -85,7 +90,7 @@ void build_emitter(Loader& ld, const XmlElement& e) {
       o.value_error_at(e, "spot needs 0 < cutoff_angle <= 90 and 0 <= beam_width <= cutoff_angle");
     if (beam < cutoff)
       ld.warn(e, "spot falloff between beam_width and cutoff_angle is a smoothstep in cos theta (Mitsuba: linear in angle)");
-    em = std::make_unique<SpotEmitter>(apply_point(m, Vec3::Zero()), z_axis(o, m), nonnegative(o, "intensity", Rgb::Ones()),
+    em = std::make_unique<SpotEmitter>(apply_point(o, m, Vec3::Zero()), z_axis(o, m), nonnegative(o, "intensity", Rgb::Ones()),
                                        cutoff, beam);
   } else if (t == "directional") {
     Vec3 d;
@@ -105,7 +110,7 @@ void build_emitter(Loader& ld, const XmlElement& e) {
   } else if (t == "area") {
     o.error("an area emitter must be nested inside a <shape>");
   } else {
-    o.error("unsupported emitter type '" + t + "' (point, spot, directional, constant, envmap; area inside a shape)");
+    o.error("unsupported emitter type '" + quote_input(t) + "' (point, spot, directional, constant, envmap; area inside a shape)");
   }
   if (em->kind() == EmitterKind::environment && ld.scene().environment())
     o.error("a scene can have only one environment emitter (constant or envmap)");

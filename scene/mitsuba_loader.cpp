@@ -28,6 +28,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/limits.h"
 #include "scene/mitsuba_detail.h"
 
 namespace dp::scene {
@@ -57,15 +58,18 @@ std::string Loader::resolve_path(const XmlElement& at, const std::string& file) 
   namespace fs = std::filesystem;
   const fs::path p(file);
   if (p.is_absolute()) return file;
+  // The error_code overloads: a name the system rejects (too long, ...) is left for
+  // the reader's one-line IoError instead of a filesystem_error quoting it in full.
+  std::error_code ec;
   const fs::path own = fs::path(at.file_name()).parent_path() / p;
-  if (fs::exists(own)) return own.string();
+  if (fs::exists(own, ec)) return own.string();
   const fs::path main = fs::path(m_path).parent_path() / p;
-  return fs::exists(main) ? main.string() : own.string();
+  return fs::exists(main, ec) ? main.string() : own.string();
 }
 
 const XmlElement& Loader::lookup(const XmlElement& at, const std::string& id) const {
   auto it = m_ids.find(id);
-  if (it == m_ids.end()) fail(at, "reference to undefined id '" + id + "'");
+  if (it == m_ids.end()) fail(at, "reference to undefined id '" + quote_input(id) + "'");
   return *it->second;
 }
 
@@ -74,12 +78,12 @@ const XmlElement& Loader::deref(const XmlElement& e) const {
   const std::string* id = e.attribute("id");
   if (!id) fail(e, "<ref> needs an 'id' attribute");
   for (const auto& [k, v] : e.attributes)
-    if (k != "id" && k != "name") fail(e, "unknown attribute '" + k + "' of <ref>");
+    if (k != "id" && k != "name") fail(e, "unknown attribute '" + quote_input(k) + "' of <ref>");
   return lookup(e, *id);
 }
 
 BsdfPtr Loader::bsdf(const XmlElement& e) {
-  if (e.tag != "bsdf") fail(e, "expected a <bsdf>, got <" + e.tag + ">");
+  if (e.tag != "bsdf") fail(e, "expected a <bsdf>, got <" + quote_input(e.tag) + ">");
   auto it = m_bsdfs.find(&e);
   if (it != m_bsdfs.end()) return it->second;
   BsdfPtr b = build_bsdf(*this, e);
@@ -106,7 +110,7 @@ int Loader::builtin_bsdf(const std::string& kind) {
 }
 
 TexturePtr Loader::texture(const XmlElement& e) {
-  if (e.tag != "texture") fail(e, "expected a <texture>, got <" + e.tag + ">");
+  if (e.tag != "texture") fail(e, "expected a <texture>, got <" + quote_input(e.tag) + ">");
   auto it = m_textures.find(&e);
   if (it != m_textures.end()) return it->second;
   TexturePtr t = build_texture(*this, e);
@@ -115,7 +119,7 @@ TexturePtr Loader::texture(const XmlElement& e) {
 }
 
 HomogeneousMedium& Loader::medium(const XmlElement& e) {
-  if (e.tag != "medium") fail(e, "expected a <medium>, got <" + e.tag + ">");
+  if (e.tag != "medium") fail(e, "expected a <medium>, got <" + quote_input(e.tag) + ">");
   auto it = m_media.find(&e);
   if (it != m_media.end()) return it->second;
   return m_media.emplace(&e, build_medium(*this, e)).first->second;
@@ -149,7 +153,7 @@ void Loader::preprocess(XmlElement& scene_elem, int depth) {
       try {
         inc = parse_xml_file(path);
       } catch (const IoError& e) {
-        throw IoError("cannot read included file '" + name + "': " + e.message(), c.file_name(), c.line);
+        throw IoError("cannot read included file '" + quote_input(name) + "': " + e.message(), c.file_name(), c.line);
       }
       if (inc.tag != "scene") fail(inc, "an included file must have a <scene> root element");
       preprocess(inc, depth + 1);
@@ -168,7 +172,7 @@ void Loader::substitute(XmlElement& e) const {
       size_t end = pos + 1;
       while (end < v.size() && is_identifier_char(v[end])) ++end;
       const std::string name = v.substr(pos + 1, end - pos - 1);
-      if (name.empty()) fail(e, "'$' without a parameter name in attribute '" + k + "'");
+      if (name.empty()) fail(e, "'$' without a parameter name in attribute '" + quote_input(k) + "'");
       auto it = m_params.find(name);
       if (it == m_params.end()) fail(e, "undefined parameter '$" + name + "' (no <default name=\"" + name + "\">)");
       v.replace(pos, end - pos, it->second);
@@ -184,7 +188,7 @@ void Loader::collect_ids(const XmlElement& e) {
     if (c.tag != "ref")
       if (const std::string* id = c.attribute("id")) {
         if (!m_ids.emplace(*id, &c).second)
-          fail(c, "duplicate id '" + *id + "' (first defined at " + where(*m_ids[*id]) + ")");
+          fail(c, "duplicate id '" + quote_input(*id) + "' (first defined at " + where(*m_ids[*id]) + ")");
       }
     collect_ids(c);
   }
@@ -194,14 +198,14 @@ void Loader::collect_ids(const XmlElement& e) {
       const std::string* as = c.attribute("as");
       if (!id || !as) fail(c, "<alias> needs 'id' and 'as' attributes");
       const XmlElement& target = lookup(c, *id);
-      if (!m_ids.emplace(*as, &target).second) fail(c, "duplicate id '" + *as + "'");
+      if (!m_ids.emplace(*as, &target).second) fail(c, "duplicate id '" + quote_input(*as) + "'");
     }
 }
 
 void Loader::build_camera(const XmlElement& sensor) {
   Object o(*this, sensor);
   if (o.type() != "perspective")
-    o.error("unsupported sensor type '" + o.type() + "' (perspective; thin-lens blur, orthographic and other "
+    o.error("unsupported sensor type '" + quote_input(o.type()) + "' (perspective; thin-lens blur, orthographic and other "
             "projections would change the image)");
   CameraDesc desc;
   int width = 768, height = 576;
@@ -209,7 +213,7 @@ void Loader::build_camera(const XmlElement& sensor) {
     Object f(*this, *film_elem);
     const std::string& t = f.type();
     if (t != "hdrfilm" && t != "ldrfilm" && t != "multifilm" && t != "tiledhdrfilm")
-      f.error("unsupported film type '" + t + "' (hdrfilm, ldrfilm, multifilm, tiledhdrfilm)");
+      f.error("unsupported film type '" + quote_input(t) + "' (hdrfilm, ldrfilm, multifilm, tiledhdrfilm)");
     width = f.get_int("width", width);
     height = f.get_int("height", height);
     if (!valid_image_size(width, height))
@@ -248,6 +252,9 @@ void Loader::build_camera(const XmlElement& sensor) {
   // Mitsuba's image x axis runs along -to_world(1, 0, 0); ours along forward x up.
   if (!(-left.normalized().dot(f.cross(u)) > 0.0))
     o.error("sensor to_world mirrors the image (negative determinant), which the camera cannot represent");
+  if (!(m.block<3, 1>(0, 3).cwiseAbs().maxCoeff() <= kMaxSceneMagnitude))
+    o.value_error_at(o.elem(), std::string("sensor position beyond the scene limit (coordinates at most ") +
+                                   kMaxSceneMagnitudeText + " in magnitude)");
   desc.position = m.block<3, 1>(0, 3).cast<float>();
   desc.look_at = (m.block<3, 1>(0, 3) + f).cast<float>();
   desc.up = u.cast<float>();
@@ -275,7 +282,7 @@ void Loader::build_camera(const XmlElement& sensor) {
     fov = 2.0 * std::atan(t) * 180.0 / kPiD;
     axis = "x";
   }
-  if (axis != "x" && axis != "y") o.error("'fov_axis' must be x, y, diagonal, smaller or larger (got '" + axis + "')");
+  if (axis != "x" && axis != "y") o.error("'fov_axis' must be x, y, diagonal, smaller or larger (got '" + quote_input(axis) + "')");
   desc.fov_deg = float(fov);
   desc.fov_axis_x = axis == "x";
   for (const char* p : {"near_clip", "far_clip", "focus_distance", "shutter_open", "shutter_close", "principal_point_offset_x",
@@ -298,13 +305,13 @@ void Loader::build_integrator(const XmlElement& e) {
   IntegratorDefaults d;
   const std::string& t = o.type();
   if (t != "path" && t != "volpath" && t != "volpath_simple") {
-    warn(e, "integrator '" + t + "' is not available: the scene's default becomes 'path' (choose another with --integrator)");
+    warn(e, "integrator '" + quote_input(t) + "' is not available: the scene's default becomes 'path' (choose another with --integrator)");
     for (const XmlElement& c : e.children)
       if (const std::string* n = c.attribute("name")) o.take(normalize_name(*n));
     (void)o.objects("integrator");
   }
   if (t == "volpath" || t == "volpath_simple")
-    warn(e, "integrator '" + t + "' mapped to 'path': no deltapath integrator renders participating media yet");
+    warn(e, "integrator '" + quote_input(t) + "' mapped to 'path': no deltapath integrator renders participating media yet");
   const int depth = o.get_int("max_depth", -1);
   if (depth == 0 || depth < -1) o.value_error_at(*o.take("max_depth"), "'max_depth' must be -1 or >= 1");
   d.max_depth = depth < 0 ? kUnboundedDepth : depth;
@@ -325,12 +332,12 @@ void Loader::build_integrator(const XmlElement& e) {
 
 void Loader::build(XmlElement root) {
   m_root = std::move(root);
-  if (m_root.tag != "scene") fail(m_root, "the root element must be <scene> (got <" + m_root.tag + ">)");
+  if (m_root.tag != "scene") fail(m_root, "the root element must be <scene> (got <" + quote_input(m_root.tag) + ">)");
   const std::string* version = m_root.attribute("version");
   if (!version) fail(m_root, "<scene> needs a 'version' attribute (e.g. 0.6.0 or 3.0.0)");
   const int major = std::atoi(version->c_str());
   if (version->empty() || !std::isdigit((unsigned char)(*version)[0]) || major > 3)
-    fail(m_root, "unsupported scene version '" + *version + "' (0.x, 2.x or 3.x)");
+    fail(m_root, "unsupported scene version '" + quote_input(*version) + "' (0.x, 2.x or 3.x)");
   for (const auto& [k, v] : m_options.parameters) m_params[k] = v;
   preprocess(m_root, 0);
   substitute(m_root);
@@ -372,9 +379,9 @@ void Loader::build(XmlElement root) {
     } else if (c.tag == "emitter") {
       build_emitter(*this, c);
     } else if (c.tag == "phase" || c.tag == "rfilter" || c.tag == "sampler" || c.tag == "film") {
-      if (!c.attribute("id")) warn(c, "<" + c.tag + "> at scene level without an id is ignored");
+      if (!c.attribute("id")) warn(c, "<" + quote_input(c.tag) + "> at scene level without an id is ignored");
     } else {
-      fail(c, "unknown or unsupported element <" + c.tag + "> in <scene>");
+      fail(c, "unknown or unsupported element <" + quote_input(c.tag) + "> in <scene>");
     }
   }
   if (m_scene.emitters().empty()) log::warn(m_path, ": the scene has no emitters (it will render black)");

@@ -25,7 +25,7 @@ PhaseFunctionDesc build_phase(Loader& ld, const XmlElement& e) {
     p.g = o.get_float("g", 0.8f);
     if (!(std::abs(p.g) < 1.0f)) o.value_error_at(e, "hg 'g' must satisfy -1 < g < 1");
   } else {
-    o.error("unsupported phase function '" + o.type() + "' (isotropic, hg)");
+    o.error("unsupported phase function '" + quote_input(o.type()) + "' (isotropic, hg)");
   }
   o.finish();
   return p;
@@ -35,7 +35,7 @@ PhaseFunctionDesc build_phase(Loader& ld, const XmlElement& e) {
 
 HomogeneousMedium build_medium(Loader& ld, const XmlElement& e) {
   Object o(ld, e);
-  if (o.type() != "homogeneous") o.error("unsupported medium type '" + o.type() + "' (homogeneous)");
+  if (o.type() != "homogeneous") o.error("unsupported medium type '" + quote_input(o.type()) + "' (homogeneous)");
   if (o.has("material")) o.error_at(*o.take("material"), "named (measured) media are not supported: give sigma_t and albedo");
   HomogeneousMedium m;
   if (const std::string* id = e.attribute("id")) m.name = *id;

@@ -14,6 +14,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/number_syntax.h"
+#include "scene/limits.h"
 #include "scene/mitsuba_detail.h"
 #include "scene/spectrum.h"
 
@@ -36,7 +38,7 @@ bool is_object_tag(const std::string& t) {
 
 const std::string& attr(const XmlElement& e, const std::string& name) {
   const std::string* v = e.attribute(name);
-  if (!v) fail(e, "<" + e.tag + "> needs a '" + name + "' attribute");
+  if (!v) fail(e, "<" + quote_input(e.tag) + "> needs a '" + quote_input(name) + "' attribute");
   return *v;
 }
 
@@ -63,7 +65,7 @@ std::vector<double> parse_numbers(const XmlElement& e, const std::string& text) 
 
 Rgb parse_hex(const XmlElement& e, const std::string& text) {
   if (text.size() != 7 || text.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
-    fail(e, "malformed colour '" + text + "' (expected #rrggbb)");
+    fail(e, "malformed colour '" + quote_input(text) + "' (expected #rrggbb)");
   Rgb c;
   for (int i = 0; i < 3; ++i) c[i] = float(std::stoi(text.substr(1 + 2 * size_t(i), 2), nullptr, 16)) / 255.0f;
   return srgb_to_linear(c);
@@ -74,14 +76,14 @@ Rgb parse_spectrum(const XmlElement& e, const Loader& ld) {
   if (const std::string* file = e.attribute("filename")) {
     const std::string path = ld.resolve_path(e, *file);
     std::ifstream in(path);
-    if (!in) throw IoError("cannot open spectrum file '" + *file + "'", e.file_name(), e.line);
+    if (!in) throw IoError("cannot open spectrum file '" + quote_input(*file) + "'", e.file_name(), e.line);
     std::string line;
     while (std::getline(in, line)) {
       const size_t hash = line.find('#');
       if (hash != std::string::npos) line.resize(hash);
       const std::vector<std::string> parts = split_numbers(line);
       if (parts.empty()) continue;
-      if (parts.size() != 2) fail(e, "spectrum file '" + *file + "': expected 'wavelength value' per line");
+      if (parts.size() != 2) fail(e, "spectrum file '" + quote_input(*file) + "': expected 'wavelength value' per line");
       samples.emplace_back(parse_float(e, parts[0]), parse_float(e, parts[1]));
     }
   } else {
@@ -89,12 +91,12 @@ Rgb parse_spectrum(const XmlElement& e, const Loader& ld) {
     if (text.find(':') == std::string::npos) {
       const std::vector<double> v = parse_numbers(e, text);
       if (v.size() != 1)
-        fail(e, "<spectrum> value must be one number or a list of wavelength:value pairs (got '" + text + "')");
+        fail(e, "<spectrum> value must be one number or a list of wavelength:value pairs (got '" + quote_input(text) + "')");
       return Rgb::Constant(float(v[0]));
     }
     for (const std::string& pair : split_numbers(text)) {
       const size_t colon = pair.find(':');
-      if (colon == std::string::npos) fail(e, "malformed spectrum entry '" + pair + "' (expected wavelength:value)");
+      if (colon == std::string::npos) fail(e, "malformed spectrum entry '" + quote_input(pair) + "' (expected wavelength:value)");
       samples.emplace_back(parse_float(e, pair.substr(0, colon)), parse_float(e, pair.substr(colon + 1)));
     }
   }
@@ -106,7 +108,7 @@ Rgb parse_spectrum(const XmlElement& e, const Loader& ld) {
 
 Vec3d parse_vec3_attr(const XmlElement& e, const std::string& name) {
   const std::vector<double> v = parse_numbers(e, attr(e, name));
-  if (v.size() != 3) fail(e, "'" + name + "' of <" + e.tag + "> needs 3 numbers");
+  if (v.size() != 3) fail(e, "'" + quote_input(name) + "' of <" + quote_input(e.tag) + "> needs 3 numbers");
   return Vec3d(v[0], v[1], v[2]);
 }
 
@@ -114,10 +116,10 @@ Vec3d parse_vec3_attr(const XmlElement& e, const std::string& name) {
 Vec3d xyz_or_value(const XmlElement& e, double def, bool allow_scalar) {
   if (const std::string* v = e.attribute("value")) {
     if (e.attribute("x") || e.attribute("y") || e.attribute("z"))
-      fail(e, "<" + e.tag + "> takes either 'value' or x/y/z, not both");
+      fail(e, "<" + quote_input(e.tag) + "> takes either 'value' or x/y/z, not both");
     const std::vector<double> n = parse_numbers(e, *v);
     if (allow_scalar && n.size() == 1) return Vec3d::Constant(n[0]);
-    if (n.size() != 3) fail(e, "'value' of <" + e.tag + "> needs 3 numbers");
+    if (n.size() != 3) fail(e, "'value' of <" + quote_input(e.tag) + "> needs 3 numbers");
     return Vec3d(n[0], n[1], n[2]);
   }
   Vec3d out = Vec3d::Constant(def);
@@ -176,9 +178,9 @@ Mat4d transform_op(const XmlElement& op) {
   } else if (op.tag == "lookat") {
     m = lookat(op);
   } else {
-    fail(op, "unknown transform operation <" + op.tag + "> (translate, scale, rotate, matrix, lookat)");
+    fail(op, "unknown transform operation <" + quote_input(op.tag) + "> (translate, scale, rotate, matrix, lookat)");
   }
-  if (!m.allFinite()) fail(op, "<" + op.tag + "> gives a non-finite matrix");
+  if (!m.allFinite()) fail(op, "<" + quote_input(op.tag) + "> gives a non-finite matrix");
   return m;
 }
 
@@ -202,12 +204,16 @@ std::string normalize_name(const std::string& name) {
 std::string where(const XmlElement& e) { return e.file_name() + ":" + std::to_string(e.line); }
 
 float parse_float(const XmlElement& e, const std::string& text) {
-  const char* s = text.c_str();
-  char* end = nullptr;
-  const double v = std::strtod(s, &end);
-  while (end && (*end == ' ' || *end == '\t')) ++end;
-  if (text.empty() || end == s || *end != '\0') fail(e, "'" + text + "' is not a number");
-  if (!std::isfinite(v)) fail(e, "'" + text + "' is not a finite number");
+  std::string_view s(text);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  if (!core::is_decimal_number(s)) fail(e, "'" + quote_input(text) + "' is not a number");
+  const double v = std::strtod(text.c_str(), nullptr);  // skips the leading blanks
+  if (!std::isfinite(v)) fail(e, "'" + quote_input(text) + "' is not a finite number");
+  if (!within_scene_limit(v))
+    throw ValueError("'" + quote_input(text) + "' is beyond the scene limit (magnitude at most " +
+                         std::string(kMaxSceneMagnitudeText) + ")",
+                     e.file_name(), e.line);
   return float(v);
 }
 
@@ -215,21 +221,21 @@ Rgb parse_color(Loader& ld, const XmlElement& e) {
   if (e.tag == "spectrum") return parse_spectrum(e, ld);
   if (e.tag == "blackbody") fail(e, "<blackbody> spectra are not supported (give an <rgb> radiance)");
   if (e.tag == "float" || e.tag == "integer") return Rgb::Constant(parse_float(e, attr(e, "value")));
-  if (e.tag != "rgb" && e.tag != "srgb") fail(e, "expected a colour (<rgb>, <srgb>, <spectrum> or <float>), got <" + e.tag + ">");
+  if (e.tag != "rgb" && e.tag != "srgb") fail(e, "expected a colour (<rgb>, <srgb>, <spectrum> or <float>), got <" + quote_input(e.tag) + ">");
   const std::string& text = attr(e, "value");
   if (!text.empty() && text[0] == '#') return parse_hex(e, text);
   const std::vector<double> v = parse_numbers(e, text);
   Rgb c;
   if (v.size() == 1) c = Rgb::Constant(float(v[0]));
   else if (v.size() == 3) c = Rgb(float(v[0]), float(v[1]), float(v[2]));
-  else fail(e, "<" + e.tag + "> needs 1 or 3 numbers, got " + std::to_string(v.size()));
+  else fail(e, "<" + quote_input(e.tag) + "> needs 1 or 3 numbers, got " + std::to_string(v.size()));
   return e.tag == "srgb" ? srgb_to_linear(c) : c;
 }
 
 Vec3 parse_vec3(const XmlElement& e) { return xyz_or_value(e, 0.0, false).cast<float>(); }
 
 Mat4d parse_transform(const XmlElement& e) {
-  if (e.tag != "transform") fail(e, "expected a <transform>, got <" + e.tag + ">");
+  if (e.tag != "transform") fail(e, "expected a <transform>, got <" + quote_input(e.tag) + ">");
   Mat4d m = Mat4d::Identity();
   for (const XmlElement& op : e.children) m = transform_op(op) * m;
   return m;
@@ -239,7 +245,7 @@ Mat4d parse_transform(const XmlElement& e) {
 Object::Object(Loader& loader, const XmlElement& element) : m_loader(loader), m_elem(element) {
   if (const std::string* t = element.attribute("type")) m_type = *t;
   for (const auto& [k, v] : element.attributes)
-    if (k != "type" && k != "id" && k != "name") fail(element, "unknown attribute '" + k + "' of " + describe());
+    if (k != "type" && k != "id" && k != "name") fail(element, "unknown attribute '" + quote_input(k) + "' of " + describe());
   for (const XmlElement& c : element.children) {
     const std::string* name = c.attribute("name");
     if (c.tag == "material" && !name && c.attribute("value")) {
@@ -250,22 +256,22 @@ Object::Object(Loader& loader, const XmlElement& element) : m_loader(loader), m_
       continue;
     }
     if (is_value_tag(c.tag)) {
-      if (!name) fail(c, "<" + c.tag + "> inside " + describe() + " needs a 'name' attribute");
+      if (!name) fail(c, "<" + quote_input(c.tag) + "> inside " + describe() + " needs a 'name' attribute");
     } else if (!is_object_tag(c.tag) && c.tag != "ref") {
-      fail(c, "unknown element <" + c.tag + "> inside " + describe());
+      fail(c, "unknown element <" + quote_input(c.tag) + "> inside " + describe());
     }
     if (!name) {
       m_unnamed.push_back({"", &c});
       continue;
     }
     const std::string n = normalize_name(*name);
-    if (find(n)) fail(c, "parameter '" + n + "' of " + describe() + " is given twice");
+    if (find(n)) fail(c, "parameter '" + quote_input(n) + "' of " + describe() + " is given twice");
     m_params.push_back({n, &c});
   }
 }
 
 std::string Object::describe() const {
-  return "<" + m_elem.tag + (m_type.empty() ? "" : " type=\"" + m_type + "\"") + ">";
+  return "<" + quote_input(m_elem.tag) + (m_type.empty() ? "" : " type=\"" + quote_input(m_type) + "\"") + ">";
 }
 
 Object::Param* Object::find(const std::string& name) {
@@ -291,37 +297,37 @@ float Object::get_float(const std::string& name, float def) {
   const XmlElement* e = take(name);
   if (!e) return def;
   if (e->tag != "float" && e->tag != "integer")
-    error_at(*e, "parameter '" + name + "' of " + describe() + " must be a <float> (got <" + e->tag + ">)");
+    error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a <float> (got <" + quote_input(e->tag) + ">)");
   return parse_float(*e, attr(*e, "value"));
 }
 
 int Object::get_int(const std::string& name, int def) {
   const XmlElement* e = take(name);
   if (!e) return def;
-  if (e->tag != "integer") error_at(*e, "parameter '" + name + "' of " + describe() + " must be an <integer> (got <" + e->tag + ">)");
+  if (e->tag != "integer") error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be an <integer> (got <" + quote_input(e->tag) + ">)");
   const std::string& text = attr(*e, "value");
   char* end = nullptr;
   const long v = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0' || v < -2147483647L || v > 2147483647L)
-    error_at(*e, "'" + text + "' is not an integer");
+    error_at(*e, "'" + quote_input(text) + "' is not an integer");
   return int(v);
 }
 
 bool Object::get_bool(const std::string& name, bool def) {
   const XmlElement* e = take(name);
   if (!e) return def;
-  if (e->tag != "boolean") error_at(*e, "parameter '" + name + "' of " + describe() + " must be a <boolean> (got <" + e->tag + ">)");
+  if (e->tag != "boolean") error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a <boolean> (got <" + quote_input(e->tag) + ">)");
   const std::string& v = attr(*e, "value");
   if (v == "true" || v == "True" || v == "TRUE") return true;
   if (v == "false" || v == "False" || v == "FALSE") return false;
-  error_at(*e, "'" + v + "' is not a boolean (true or false)");
+  error_at(*e, "'" + quote_input(v) + "' is not a boolean (true or false)");
 }
 
 std::string Object::get_string(const std::string& name, const std::string& def) {
   const XmlElement* e = take(name);
   if (!e) return def;
   if (e->tag != "string" && !(name == "material" && e->tag == "material"))
-    error_at(*e, "parameter '" + name + "' of " + describe() + " must be a <string> (got <" + e->tag + ">)");
+    error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a <string> (got <" + quote_input(e->tag) + ">)");
   return attr(*e, "value");
 }
 
@@ -329,7 +335,7 @@ Rgb Object::get_rgb(const std::string& name, const Rgb& def) {
   const XmlElement* e = take(name);
   if (!e) return def;
   if (e->tag == "texture" || e->tag == "ref")
-    error_at(*e, "parameter '" + name + "' of " + describe() + " must be a constant colour, not a texture");
+    error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a constant colour, not a texture");
   return parse_color(m_loader, *e);
 }
 
@@ -337,7 +343,7 @@ Vec3 Object::get_point(const std::string& name, const Vec3& def) {
   const XmlElement* e = take(name);
   if (!e) return def;
   if (e->tag != "point" && e->tag != "vector")
-    error_at(*e, "parameter '" + name + "' of " + describe() + " must be a <point> or <vector>");
+    error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a <point> or <vector>");
   return parse_vec3(*e);
 }
 
@@ -355,14 +361,14 @@ float Object::get_ior(const std::string& name, float def) {
   if (e->tag == "string" || e->tag == "material") {
     const std::string& s = attr(*e, "value");
     const std::optional<float> ior = named_ior(s);
-    if (!ior) error_at(*e, "unknown index of refraction '" + s + "' for '" + name + "' (e.g. vacuum, air, water, bk7, diamond)");
+    if (!ior) error_at(*e, "unknown index of refraction '" + quote_input(s) + "' for '" + quote_input(name) + "' (e.g. vacuum, air, water, bk7, diamond)");
     v = *ior;
   } else if (e->tag == "float" || e->tag == "integer") {
     v = parse_float(*e, attr(*e, "value"));
   } else {
-    error_at(*e, "parameter '" + name + "' of " + describe() + " must be a <float> or an IOR name");
+    error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a <float> or an IOR name");
   }
-  if (!(v > 0.0f)) value_error_at(*e, "'" + name + "' must be > 0");
+  if (!(v > 0.0f)) value_error_at(*e, "'" + quote_input(name) + "' must be > 0");
   return v;
 }
 
@@ -373,7 +379,7 @@ TexturePtr Object::get_texture(const std::string& name) {
   if (t.tag == "texture") return m_loader.texture(t);
   if (t.tag == "rgb" || t.tag == "srgb" || t.tag == "spectrum" || t.tag == "float" || t.tag == "integer")
     return constant_texture(parse_color(m_loader, t));
-  error_at(*e, "parameter '" + name + "' of " + describe() + " must be a colour or a texture (got <" + t.tag + ">)");
+  error_at(*e, "parameter '" + quote_input(name) + "' of " + describe() + " must be a colour or a texture (got <" + quote_input(t.tag) + ">)");
 }
 
 TexturePtr Object::get_texture(const std::string& name, const Rgb& def) {
@@ -401,13 +407,13 @@ const XmlElement* Object::named_object(const std::string& name) {
 }
 
 void Object::ignore(const std::string& name, const std::string& why) {
-  if (const XmlElement* e = take(name)) m_loader.warn(*e, describe() + " parameter '" + name + "' ignored: " + why);
+  if (const XmlElement* e = take(name)) m_loader.warn(*e, describe() + " parameter '" + quote_input(name) + "' ignored: " + why);
 }
 
 void Object::finish() {
   for (const Param& p : m_params)
     if (!p.used)
-      error_at(*p.elem, "unsupported parameter '" + p.name + "' (<" + p.elem->tag + ">) of " + describe());
+      error_at(*p.elem, "unsupported parameter '" + quote_input(p.name) + "' (<" + p.elem->tag + ">) of " + describe());
   for (const Param& p : m_unnamed)
     if (!p.used) {
       const XmlElement& t = m_loader.deref(*p.elem);

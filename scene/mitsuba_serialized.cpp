@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/read_file.h"
 
 namespace dp::scene {
 
@@ -92,6 +93,7 @@ class Inflater {
 }  // namespace
 
 SerializedMesh load_serialized(const std::string& path, int shape_index) {
+  core::check_readable_file(path, "serialized mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open serialized mesh", path);
   const std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/limits.h"
 #include "scene/mesh_io.h"
 #include "scene/mitsuba_detail.h"
 #include "scene/mitsuba_serialized.h"
@@ -135,9 +136,9 @@ std::unique_ptr<TriangleMesh> load_file_mesh(Loader& ld, Object& o, bool& face_n
       mesh = o.type() == "obj" ? load_obj(path) : load_ply(path);
     }
   } catch (const IoError& e) {
-    throw IoError("cannot load mesh '" + file + "': " + e.what(), fn->file_name(), fn->line);
+    throw IoError("cannot load mesh '" + quote_input(file) + "': " + e.what(), fn->file_name(), fn->line);
   } catch (const Error& e) {
-    throw ParseError("invalid mesh '" + file + "': " + e.what(), fn->file_name(), fn->line);
+    throw ParseError("invalid mesh '" + quote_input(file) + "': " + e.what(), fn->file_name(), fn->line);
   }
   // Mitsuba flips OBJ texture coordinates by default (then v = 0 is an image's top
   // row); in deltapath's convention that is the file's own v.
@@ -154,8 +155,12 @@ std::unique_ptr<Sphere> sphere(Object& o, const Mat4d& m) {
   const double s2 = (a.transpose() * a).trace() / 3.0;
   if (!((a.transpose() * a - s2 * Eigen::Matrix3d::Identity()).norm() <= 1e-5 * s2) || !(s2 > 0.0))
     o.error("a sphere's to_world must be a rotation, uniform scale and translation");
-  const Vec3 center = (a * c.cast<double>() + m.block<3, 1>(0, 3)).cast<float>();
-  return std::make_unique<Sphere>(center, float(std::sqrt(s2) * double(r)));
+  const Vec3d center = a * c.cast<double>() + m.block<3, 1>(0, 3);
+  const double radius = std::sqrt(s2) * double(r);
+  if (!(center.cwiseAbs().maxCoeff() + radius <= kMaxSceneMagnitude))
+    o.value_error_at(o.elem(), std::string("sphere reaches beyond the scene limit (coordinates at most ") +
+                                   kMaxSceneMagnitudeText + " in magnitude, after its to_world)");
+  return std::make_unique<Sphere>(center.cast<float>(), float(radius));
 }
 
 void transform_mesh(TriangleMesh& mesh, const Mat4d& m, bool swap_winding) {
@@ -222,7 +227,7 @@ void build_shape(Loader& ld, const XmlElement& e, const Mat4d& parent) {
     } else if (t == "shapegroup") {
       o.error("a shapegroup can only appear at scene level");
     } else {
-      o.error("unsupported shape type '" + t + "' (obj, ply, serialized, rectangle, cube, disk, cylinder, sphere, instance)");
+      o.error("unsupported shape type '" + quote_input(t) + "' (obj, ply, serialized, rectangle, cube, disk, cylinder, sphere, instance)");
     }
     if (face_normals) {
       mesh->normals.clear();
@@ -238,11 +243,13 @@ void build_shape(Loader& ld, const XmlElement& e, const Mat4d& parent) {
     }
     try {
       mesh->finalize();
+    } catch (const ValueError& err) {
+      o.value_error_at(e, err.message());
     } catch (const Error& err) {
       o.error(err.message());
     }
     if (mesh->degenerate_skipped > 0)
-      ld.warn(e, "skipped " + std::to_string(mesh->degenerate_skipped) + " degenerate triangle(s) of '" + mesh->name + "'");
+      ld.warn(e, "skipped " + std::to_string(mesh->degenerate_skipped) + " degenerate triangle(s) of '" + quote_input(mesh->name) + "'");
     if (mesh->triangles.empty()) o.value_error_at(e, t + " shape has no non-degenerate triangles");
     shape = std::move(mesh);
   }
@@ -253,7 +260,7 @@ void build_shape(Loader& ld, const XmlElement& e, const Mat4d& parent) {
   if (emitters.size() > 1) o.error("a shape can carry at most one emitter");
   if (!emitters.empty()) {
     Object eo(ld, *emitters[0]);
-    if (eo.type() != "area") eo.error("only 'area' emitters can be attached to a shape (got '" + eo.type() + "')");
+    if (eo.type() != "area") eo.error("only 'area' emitters can be attached to a shape (got '" + quote_input(eo.type()) + "')");
     const XmlElement* rad = eo.take("radiance");
     if (!rad) eo.error("area emitter needs a 'radiance'");
     if (rad->tag == "texture" || rad->tag == "ref") eo.error_at(*rad, "textured area emitters are not supported");

@@ -84,7 +84,7 @@ TexturePtr build_bitmap(Loader& ld, Object& o) {
   const std::string file = *fn->attribute("value");
   const bool raw = o.get_bool("raw", false);
   const std::string wrap = o.get_string("wrap_mode", "repeat");
-  if (wrap != "repeat") o.error_at(o.elem(), "wrap_mode '" + wrap + "' is not supported (repeat)");
+  if (wrap != "repeat") o.error_at(o.elem(), "wrap_mode '" + quote_input(wrap) + "' is not supported (repeat)");
   if (o.has("gamma")) {
     const float g = o.get_float("gamma", 0);
     if (g != -1.0f && g != 0.0f) o.error_at(o.elem(), "bitmap 'gamma' other than the sRGB default is not supported");
@@ -96,7 +96,7 @@ TexturePtr build_bitmap(Loader& ld, Object& o) {
   try {
     tex = std::make_shared<BitmapTexture>(ld.resolve_path(*fn, file), 1.0f, raw);
   } catch (const Error& e) {
-    throw IoError("cannot read texture '" + file + "': " + e.message(), fn->file_name(), fn->line);
+    throw IoError("cannot read texture '" + quote_input(file) + "': " + e.message(), fn->file_name(), fn->line);
   }
   return xf.identity() ? tex : std::make_shared<TransformedTexture>(tex, xf);
 }
@@ -113,7 +113,7 @@ TexturePtr build_texture(Loader& ld, const XmlElement& e) {
     const Rgb c1 = o.get_rgb("color1", Rgb::Constant(0.2f));
     out = std::make_shared<MitsubaCheckerboard>(c0, c1, parse_uv_transform(o));
   } else {
-    o.error("unsupported texture type '" + o.type() + "' (bitmap, checkerboard)");
+    o.error("unsupported texture type '" + quote_input(o.type()) + "' (bitmap, checkerboard)");
   }
   o.finish();
   return out;

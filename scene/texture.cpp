@@ -5,15 +5,21 @@
 // nearest texel centres, repeat wrapping in both directions.
 #include "scene/texture.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 #include "core/image_io.h"
 
 namespace dp::scene {
 
 namespace {
-int wrap(int i, int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
+// floor(x) mod n in [0, n), computed in double: uv times a texture's size or scale can
+// be far outside int's range (a float-to-int conversion there is undefined behaviour).
+int wrap(double x, int n) {
+  if (!std::isfinite(x)) return 0;
+  const double r = x - double(n) * std::floor(x / double(n));
+  return std::clamp(int(r), 0, n - 1);
 }
 }  // namespace
 
@@ -45,16 +51,17 @@ Rgb BitmapTexture::eval(const Vec2& uv) const {
   const double y = (1.0 - double(uv.y())) * h - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
   const float tx = float(x - fx), ty = float(y - fy);
-  const int x0 = wrap(int(fx), w), x1 = wrap(int(fx) + 1, w);
-  const int y0 = wrap(int(fy), h), y1 = wrap(int(fy) + 1, h);
+  const int x0 = wrap(fx, w), x1 = wrap(fx + 1.0, w);
+  const int y0 = wrap(fy, h), y1 = wrap(fy + 1.0, h);
   return (1.0f - ty) * ((1.0f - tx) * m_image(x0, y0) + tx * m_image(x1, y0)) +
          ty * ((1.0f - tx) * m_image(x0, y1) + tx * m_image(x1, y1));
 }
 
 Rgb CheckerboardTexture::eval(const Vec2& uv) const {
-  const long long a = (long long)std::floor(double(uv.x()) * double(m_scale.x()));
-  const long long b = (long long)std::floor(double(uv.y()) * double(m_scale.y()));
-  return ((a + b) % 2 == 0) ? m_c0 : m_c1;
+  // Parity of floor(u su) + floor(v sv) without converting to an integer type (the
+  // products can exceed any of them; beyond 2^53 every double is even).
+  return (wrap(double(uv.x()) * double(m_scale.x()), 2) + wrap(double(uv.y()) * double(m_scale.y()), 2)) % 2 == 0 ? m_c0
+                                                                                                              : m_c1;
 }
 
 }  // namespace dp::scene

@@ -16,8 +16,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <sstream>
+
 #include "core/error.h"
 #include "core/warp.h"
+#include "scene/limits.h"
 #include "scene/shape.h"
 
 namespace dp::scene {
@@ -47,6 +50,14 @@ void TriangleMesh::finalize() {
   if (!uvs.empty() && uvs.size() != positions.size())
     throw ValueError("mesh '" + name + "': " + std::to_string(uvs.size()) + " uvs for " +
                      std::to_string(positions.size()) + " vertices");
+  for (size_t i = 0; i < positions.size(); ++i)
+    if (!positions[i].hasNaN() && !within_scene_limit(positions[i])) {  // NaN vertices: dropped below
+      std::ostringstream os;
+      os << "mesh '" << quote_input(name) << "': vertex " << i << " at (" << positions[i].x() << ", " << positions[i].y()
+         << ", " << positions[i].z() << ") is beyond the scene limit (coordinates at most " << kMaxSceneMagnitudeText
+         << " in magnitude, after the shape's transform)";
+      throw ValueError(os.str());
+    }
   std::vector<std::array<uint32_t, 3>> kept;
   kept.reserve(triangles.size());
   std::vector<double> areas;

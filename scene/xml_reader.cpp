@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/read_file.h"
 
 namespace dp::scene {
 
@@ -239,12 +240,7 @@ class Reader {
 XmlElement parse_xml(const std::string& text, const std::string& file) { return Reader(text, file).read(); }
 
 XmlElement parse_xml_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open XML file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError("cannot read XML file", path);
-  return parse_xml(ss.str(), path);
+  return parse_xml(core::read_file(path, "XML file"), path);
 }
 
 }  // namespace dp::scene

@@ -68,12 +68,12 @@ EmitterPtr parse_environment(const Context& ctx, const YAML::Node& m) {
   try {
     image = core::read_image(resolve_path(ctx, file));
   } catch (const Error& e) {
-    throw IoError("cannot read environment map '" + file + "': " + e.what(), ctx.file, line_of(f));
+    throw IoError("cannot read environment map '" + quote_input(file) + "': " + e.what(), ctx.file, line_of(f));
   }
-  if (image.empty()) throw IoError("environment map '" + file + "' is empty", ctx.file, line_of(f));
+  if (image.empty()) throw IoError("environment map '" + quote_input(file) + "' is empty", ctx.file, line_of(f));
   for (const Rgb& c : image.pixels())
     if (!is_finite(c) || (c < 0.0f).any())
-      value_error(ctx, f, "environment map '" + file + "' has negative or non-finite pixels");
+      value_error(ctx, f, "environment map '" + quote_input(file) + "' has negative or non-finite pixels");
   return std::make_unique<EnvironmentEmitter>(std::move(image), Mat3::Identity(), 1.0f);
 }
 
@@ -101,7 +101,7 @@ void parse_lights(LoadState& st, const YAML::Node& lights) {
       have_env = true;
       e = parse_environment(ctx, m);
     } else {
-      parse_error(ctx, type_node, "unknown light type '" + type + "' (point, spot, directional, environment)");
+      parse_error(ctx, type_node, "unknown light type '" + quote_input(type) + "' (point, spot, directional, environment)");
     }
     st.scene.add_emitter(std::move(e));
   }

@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/read_file.h"
 #include "scene/loader.h"
 #include "scene/yaml_sections.h"
 
@@ -31,7 +32,7 @@ CameraDesc parse_camera(const Context& ctx, const YAML::Node& m) {
   check_keys(ctx, m, {"type", "position", "look_at", "direction", "up", "fov", "fov_axis", "resolution"}, what);
   if (const YAML::Node t = m["type"]; t.IsDefined()) {
     const std::string type = get_string(ctx, t, "type");
-    if (type != "perspective") parse_error(ctx, t, "unknown camera type '" + type + "' (perspective)");
+    if (type != "perspective") parse_error(ctx, t, "unknown camera type '" + quote_input(type) + "' (perspective)");
   }
   CameraDesc desc;
   desc.position = get_vec3(ctx, require(ctx, m, "position", what), "position");
@@ -61,7 +62,7 @@ CameraDesc parse_camera(const Context& ctx, const YAML::Node& m) {
   if (!(desc.fov_deg > 0.0f && desc.fov_deg < 180.0f)) value_error(ctx, fov, "'fov' must be in (0, 180) degrees");
   if (const YAML::Node axis = m["fov_axis"]; axis.IsDefined()) {
     const std::string a = get_string(ctx, axis, "fov_axis");
-    if (a != "x" && a != "y") value_error(ctx, axis, "'fov_axis' must be x or y (got '" + a + "')");
+    if (a != "x" && a != "y") value_error(ctx, axis, "'fov_axis' must be x or y (got '" + quote_input(a) + "')");
     desc.fov_axis_x = a == "x";
   }
   const YAML::Node res = require(ctx, m, "resolution", what);
@@ -89,9 +90,9 @@ IntegratorDefaults parse_integrator(const Context& ctx, const YAML::Node& m) {
       if (d.spp < 1) value_error(ctx, it->second, "'spp' must be >= 1");
     } else {
       if (!it->second.IsDefined() || it->second.IsNull())
-        parse_error(ctx, it->first, "integrator setting '" + key + "' has no value");
+        parse_error(ctx, it->first, "integrator setting '" + quote_input(key) + "' has no value");
       if (!d.settings.emplace(key, to_text(it->second)).second)
-        parse_error(ctx, it->first, "duplicate key '" + key + "' in integrator");
+        parse_error(ctx, it->first, "duplicate key '" + quote_input(key) + "' in integrator");
     }
   }
   return d;
@@ -152,12 +153,7 @@ std::unique_ptr<Scene> load_scene_yaml_string(const std::string& text, const std
 }
 
 std::unique_ptr<Scene> load_scene_yaml(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open scene file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError("cannot read scene file", path);
-  return yaml::build(ss.str(), path, options);
+  return yaml::build(core::read_file(path, "scene file"), path, options);
 }
 
 }  // namespace dp::scene

@@ -26,7 +26,7 @@ MicrofacetType parse_distribution(const Context& ctx, const YAML::Node& m) {
   const std::string s = get_string(ctx, d, "distribution");
   if (s == "ggx") return MicrofacetType::ggx;
   if (s == "beckmann") return MicrofacetType::beckmann;
-  value_error(ctx, d, "'distribution' must be beckmann or ggx (got '" + s + "')");
+  value_error(ctx, d, "'distribution' must be beckmann or ggx (got '" + quote_input(s) + "')");
 }
 
 float parse_roughness(const Context& ctx, const YAML::Node& m) {
@@ -118,7 +118,7 @@ BsdfPtr parse_plastic(const Context& ctx, const YAML::Node& m, const std::string
 }
 
 BsdfPtr parse_material(const Context& ctx, const std::string& name, const YAML::Node& m) {
-  const std::string what = "material '" + name + "'";
+  const std::string what = "material '" + quote_input(name) + "'";
   expect_map(ctx, m, what);
   const YAML::Node type_node = require(ctx, m, "type", what);
   const std::string type = get_string(ctx, type_node, "type");
@@ -129,7 +129,7 @@ BsdfPtr parse_material(const Context& ctx, const std::string& name, const YAML::
   if (type == "conductor") return parse_conductor(ctx, m, what);
   if (type == "plastic") return parse_plastic(ctx, m, what);
   parse_error(ctx, type_node,
-              "unknown material type '" + type + "' (diffuse, phong, mirror, dielectric, conductor, plastic)");
+              "unknown material type '" + quote_input(type) + "' (diffuse, phong, mirror, dielectric, conductor, plastic)");
 }
 
 }  // namespace
@@ -138,7 +138,7 @@ void parse_materials(LoadState& st, const YAML::Node& materials) {
   expect_map(st.ctx, materials, "materials");
   for (auto it = materials.begin(); it != materials.end(); ++it) {
     const std::string name = get_string(st.ctx, it->first, "material name");
-    if (st.materials.count(name)) parse_error(st.ctx, it->first, "material '" + name + "' is defined twice");
+    if (st.materials.count(name)) parse_error(st.ctx, it->first, "material '" + quote_input(name) + "' is defined twice");
     st.materials[name].bsdf = parse_material(st.ctx, name, it->second);
   }
 }
@@ -146,7 +146,7 @@ void parse_materials(LoadState& st, const YAML::Node& materials) {
 int LoadState::material_index(const YAML::Node& ref) {
   const std::string name = get_string(ctx, ref, "material");
   auto it = materials.find(name);
-  if (it == materials.end()) parse_error(ctx, ref, "undefined material '" + name + "'");
+  if (it == materials.end()) parse_error(ctx, ref, "undefined material '" + quote_input(name) + "'");
   if (it->second.index < 0) it->second.index = scene.add_bsdf(it->second.bsdf, name);
   return it->second.index;
 }

@@ -27,17 +27,17 @@ PhaseFunctionDesc parse_phase(const Context& ctx, const YAML::Node& p) {
       if (!(std::abs(desc.g) < 1.0f)) value_error(ctx, g, "'g' must satisfy -1 < g < 1");
     }
   } else {
-    parse_error(ctx, type_node, "unknown phase function type '" + type + "' (isotropic, hg)");
+    parse_error(ctx, type_node, "unknown phase function type '" + quote_input(type) + "' (isotropic, hg)");
   }
   return desc;
 }
 
 HomogeneousMedium parse_medium(const Context& ctx, const std::string& name, const YAML::Node& m) {
-  const std::string what = "medium '" + name + "'";
+  const std::string what = "medium '" + quote_input(name) + "'";
   expect_map(ctx, m, what);
   const YAML::Node type_node = require(ctx, m, "type", what);
   const std::string type = get_string(ctx, type_node, "type");
-  if (type != "homogeneous") parse_error(ctx, type_node, "unknown medium type '" + type + "' (homogeneous)");
+  if (type != "homogeneous") parse_error(ctx, type_node, "unknown medium type '" + quote_input(type) + "' (homogeneous)");
   check_keys(ctx, m, {"type", "sigma_a", "sigma_s", "phase"}, what);
   HomogeneousMedium med;
   med.name = name;
@@ -53,7 +53,7 @@ void parse_media(LoadState& st, const YAML::Node& media) {
   expect_map(st.ctx, media, "media");
   for (auto it = media.begin(); it != media.end(); ++it) {
     const std::string name = get_string(st.ctx, it->first, "medium name");
-    if (st.media.count(name)) parse_error(st.ctx, it->first, "medium '" + name + "' is defined twice");
+    if (st.media.count(name)) parse_error(st.ctx, it->first, "medium '" + quote_input(name) + "' is defined twice");
     st.media[name].medium = parse_medium(st.ctx, name, it->second);
   }
 }
@@ -61,7 +61,7 @@ void parse_media(LoadState& st, const YAML::Node& media) {
 int LoadState::medium_index(const YAML::Node& ref) {
   const std::string name = get_string(ctx, ref, "medium");
   auto it = media.find(name);
-  if (it == media.end()) parse_error(ctx, ref, "undefined medium '" + name + "'");
+  if (it == media.end()) parse_error(ctx, ref, "undefined medium '" + quote_input(name) + "'");
   if (it->second.index < 0) it->second.index = scene.add_medium(it->second.medium);
   return it->second.index;
 }

@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/limits.h"
 #include "scene/mesh_io.h"
 #include "scene/yaml_sections.h"
 #include "scene/yaml_transform.h"
@@ -88,9 +89,9 @@ std::unique_ptr<TriangleMesh> make_mesh(const Context& ctx, const YAML::Node& m)
   try {
     mesh = load_mesh(resolve_path(ctx, file));
   } catch (const IoError& e) {
-    throw IoError("cannot load mesh '" + file + "': " + e.what(), ctx.file, line_of(file_node));
+    throw IoError("cannot load mesh '" + quote_input(file) + "': " + e.what(), ctx.file, line_of(file_node));
   } catch (const Error& e) {
-    throw ParseError("invalid mesh '" + file + "': " + e.what(), ctx.file, line_of(file_node));
+    throw ParseError("invalid mesh '" + quote_input(file) + "': " + e.what(), ctx.file, line_of(file_node));
   }
   if (const YAML::Node s = m["smooth"]; s.IsDefined()) mesh->smooth = get_bool(ctx, s, "smooth");
   if (mesh->name.empty()) mesh->name = file;
@@ -126,6 +127,9 @@ std::unique_ptr<Shape> make_sphere(const Context& ctx, const YAML::Node& m, cons
     center = xf->point(center);
     radius *= s.x();
   }
+  if (!within_scene_limit(double(center.cwiseAbs().maxCoeff()) + double(radius)))
+    value_error(ctx, m, std::string("sphere reaches beyond the scene limit (coordinates at most ") +
+                            kMaxSceneMagnitudeText + " in magnitude, after its transform)");
   return std::make_unique<Sphere>(center, radius);
 }
 
@@ -143,7 +147,7 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
   } else if (type == "sphere") {
     allowed.insert(allowed.end(), {"center", "radius"});
   } else {
-    parse_error(ctx, type_node, "unknown shape type '" + type + "' (mesh, triangle, quad, sphere)");
+    parse_error(ctx, type_node, "unknown shape type '" + quote_input(type) + "' (mesh, triangle, quad, sphere)");
   }
   check_keys(ctx, m, allowed, type + " shape");
 
@@ -161,6 +165,8 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
     if (type != "mesh") mesh->smooth = false;
     try {
       mesh->finalize();
+    } catch (const ValueError& e) {
+      value_error(ctx, m, e.message());
     } catch (const Error& e) {
       parse_error(ctx, m, e.message());
     }

@@ -15,7 +15,7 @@ namespace {
 
 void check_at_most_one(const Context& ctx, const YAML::Node& node, const std::string& name, const Rgb& c) {
   if ((c > 1.0f).any())
-    value_error(ctx, node, "'" + name + "': reflectance components must be <= 1 (energy conservation)");
+    value_error(ctx, node, "'" + quote_input(name) + "': reflectance components must be <= 1 (energy conservation)");
 }
 
 TexturePtr parse_bitmap(const Context& ctx, const YAML::Node& file_node, const std::string& name) {
@@ -24,7 +24,7 @@ TexturePtr parse_bitmap(const Context& ctx, const YAML::Node& file_node, const s
   try {
     return std::make_shared<BitmapTexture>(path);
   } catch (const Error& e) {
-    throw IoError("cannot read texture '" + file + "': " + e.what(), ctx.file, line_of(file_node));
+    throw IoError("cannot read texture '" + quote_input(file) + "': " + e.what(), ctx.file, line_of(file_node));
   }
 }
 
@@ -51,9 +51,9 @@ TexturePtr parse_checkerboard(const Context& ctx, const YAML::Node& node, const 
 
 TexturePtr parse_texture(const Context& ctx, const YAML::Node& node, const std::string& name, bool max_one) {
   if (node.IsMap()) {
-    check_keys(ctx, node, {"texture", "checkerboard"}, "'" + name + "'");
+    check_keys(ctx, node, {"texture", "checkerboard"}, "'" + quote_input(name) + "'");
     if (node.size() != 1)
-      parse_error(ctx, node, "'" + name + "': give exactly one of 'texture' or 'checkerboard'");
+      parse_error(ctx, node, "'" + quote_input(name) + "': give exactly one of 'texture' or 'checkerboard'");
     if (const YAML::Node f = node["texture"]; f.IsDefined()) return parse_bitmap(ctx, f, name);
     return parse_checkerboard(ctx, node["checkerboard"], name, max_one);
   }

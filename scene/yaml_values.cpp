@@ -8,12 +8,14 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/number_syntax.h"
+#include "scene/limits.h"
 
 namespace dp::scene::yaml {
 
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) { return "'" + quote_input(s) + "'"; }
 
 const char* type_name(const YAML::Node& node) {
   switch (node.Type()) {
@@ -77,9 +79,9 @@ void check_keys(const Context& ctx, const YAML::Node& map, const std::vector<std
     if (!ok) {
       std::string list;
       for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      parse_error(ctx, it->first, "unknown key " + quoted(key) + " in " + what + " (allowed: " + list + ")");
+      parse_error(ctx, it->first, "unknown key " + quoted(quote_input(key)) + " in " + what + " (allowed: " + list + ")");
     }
-    if (!seen.insert(key).second) parse_error(ctx, it->first, "duplicate key " + quoted(key) + " in " + what);
+    if (!seen.insert(key).second) parse_error(ctx, it->first, "duplicate key " + quoted(quote_input(key)) + " in " + what);
   }
 }
 
@@ -94,15 +96,14 @@ float get_float(const Context& ctx, const YAML::Node& node, const std::string& n
   if (!is_plain_scalar(node)) parse_error(ctx, node, quoted(name) + ": expected a number, got " + type_name(node));
   const std::string& s = node.Scalar();
   if (is_nonfinite_spelling(s)) value_error(ctx, node, quoted(name) + ": not a finite number (" + s + ")");
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size())
-    parse_error(ctx, node, quoted(name) + ": expected a number, got '" + s + "'");
-  const auto f = static_cast<float>(v);
-  if (!std::isfinite(f) || (errno == ERANGE && std::abs(v) > 1.0))
-    value_error(ctx, node, quoted(name) + ": not a finite number (" + s + ")");
-  return f;
+  if (!core::is_decimal_number(s))
+    parse_error(ctx, node, quoted(name) + ": expected a number, got '" + quote_input(s) + "'");
+  const double v = std::strtod(s.c_str(), nullptr);
+  if (!std::isfinite(v)) value_error(ctx, node, quoted(name) + ": not a finite number (" + quote_input(s) + ")");
+  if (!within_scene_limit(v))
+    value_error(ctx, node, quoted(name) + ": " + quote_input(s) + " is beyond the scene limit (magnitude at most " +
+                               kMaxSceneMagnitudeText + ")");
+  return static_cast<float>(v);
 }
 
 int get_int(const Context& ctx, const YAML::Node& node, const std::string& name) {
@@ -112,9 +113,9 @@ int get_int(const Context& ctx, const YAML::Node& node, const std::string& name)
   char* end = nullptr;
   const long v = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || end != s.c_str() + s.size())
-    parse_error(ctx, node, quoted(name) + ": expected an integer, got '" + s + "'");
+    parse_error(ctx, node, quoted(name) + ": expected an integer, got '" + quote_input(s) + "'");
   if (errno == ERANGE || v > 1'000'000'000L || v < -1'000'000'000L)
-    value_error(ctx, node, quoted(name) + ": integer out of range (" + s + ")");
+    value_error(ctx, node, quoted(name) + ": integer out of range (" + quote_input(s) + ")");
   return int(v);
 }
 
@@ -125,7 +126,7 @@ bool get_bool(const Context& ctx, const YAML::Node& node, const std::string& nam
     if (s == "false" || s == "False" || s == "FALSE") return false;
   }
   parse_error(ctx, node, quoted(name) + ": expected true or false, got " +
-                             (node.IsScalar() ? "'" + node.Scalar() + "'" : std::string(type_name(node))));
+                             (node.IsScalar() ? "'" + quote_input(node.Scalar()) + "'" : std::string(type_name(node))));
 }
 
 std::string get_string(const Context& ctx, const YAML::Node& node, const std::string& name) {
