@@ -31,15 +31,7 @@ const std::string kYamlHead =
     "materials:\n"
     "  white: {type: diffuse, albedo: 0.5}\n";
 
-// Lines 1-7 of every Mitsuba document here; tests append from line 8 on.
-const std::string kXmlHead =
-    "<scene version=\"3.0.0\">\n"
-    "  <sensor type=\"perspective\">\n"
-    "    <float name=\"fov\" value=\"40\"/>\n"
-    "    <transform name=\"to_world\"><lookat origin=\"0,0,5\" target=\"0,0,0\" up=\"0,1,0\"/></transform>\n"
-    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"6\"/></film>\n"
-    "  </sensor>\n"
-    "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"4\"/></emitter>\n";
+const std::string& kXmlHead = kMitsubaHead;
 
 std::unique_ptr<Scene> load_yaml(const std::string& t, const std::string& p) { return load_scene_yaml_string(t, p); }
 std::unique_ptr<Scene> load_xml(const std::string& t, const std::string& p) { return load_scene_mitsuba_string(t, p); }

@@ -52,3 +52,15 @@ void require_load_error(Load load, const std::string& text, int line, const std:
   }
   FAIL("no error was thrown");
 }
+
+// Lines 1-7 of a valid Mitsuba scene (an 8x6 perspective sensor and a point light);
+// tests append their elements from line 8 on and close it with </scene>.
+inline const std::string kMitsubaHead =
+    "<scene version=\"3.0.0\">\n"
+    "  <sensor type=\"perspective\">\n"
+    "    <float name=\"fov\" value=\"40\"/>\n"
+    "    <transform name=\"to_world\"><lookat origin=\"0,0,5\" target=\"0,0,0\" up=\"0,1,0\"/></transform>\n"
+    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"6\"/></film>\n"
+    "  </sensor>\n"
+    "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"4\"/></emitter>\n";
+

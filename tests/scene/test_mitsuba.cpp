@@ -25,15 +25,7 @@ namespace {
 
 const std::string kPath = "mem/scene.xml";
 
-// Lines 1-7: a valid scene head (sensor + light); tests append from line 8 on.
-const std::string kHead =
-    "<scene version=\"3.0.0\">\n"
-    "  <sensor type=\"perspective\">\n"
-    "    <float name=\"fov\" value=\"40\"/>\n"
-    "    <transform name=\"to_world\"><lookat origin=\"0,0,5\" target=\"0,0,0\" up=\"0,1,0\"/></transform>\n"
-    "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"6\"/></film>\n"
-    "  </sensor>\n"
-    "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"4\"/></emitter>\n";
+const std::string& kHead = kMitsubaHead;
 
 std::unique_ptr<Scene> load(const std::string& body, const MitsubaOptions& opt = {}) {
   return load_scene_mitsuba_string(kHead + body + "</scene>\n", kPath, opt);
