@@ -20,7 +20,8 @@
 // neighbour's rows are separated by a barrier. Levels below serial_pixels are run by one
 // thread (fewer barriers: they are cheap and a descheduled thread would stall each one).
 // Results do not depend on the thread count: every update reads the same values in any
-// split, and reductions are summed per row block in a fixed order.
+// split, restriction sums are formed in a fixed order, and reductions are summed per row
+// in row order.
 //
 // CG is the same three per-channel recurrences as pcg() (pcg.h): a channel stops when
 // ||rhs - A x||_2 <= tolerance ||rhs||_2 (its x is then frozen).
