@@ -23,8 +23,6 @@ GridOperator::GridOperator(int width, int height)
   const size_t n = pixels();
   m_wx.assign(n, 0.0f);
   m_wy.assign(n, 0.0f);
-  m_raw_wx.assign(n, 0.0f);
-  m_raw_wy.assign(n, 0.0f);
   m_data.assign(n, 0.0f);
   m_diag.assign(n, 0.0f);
   m_inv_pivot.assign(n, 0.0f);
@@ -54,8 +52,7 @@ void GridOperator::set_weights(const float* row_weights, const float* pixel_weig
 }
 
 double GridOperator::set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg,
-                                      float alpha, const float* user_rows, const float* user_pixels, int threads,
-                                      Vec4* rhs_out) {
+                                      float alpha, const float* user_rows, const float* user_pixels, int threads) {
   DP_CHECK(alpha >= 0.0f, "alpha must be >= 0");
   const int w = m_w, h = m_h;
   DP_CHECK(b.size() == size_t(h) * size_t(w - 1) + size_t(w) * size_t(h - 1), "b size mismatch");
@@ -107,45 +104,6 @@ double GridOperator::set_irls_weights(const Vec4* image, const std::vector<Rgb>&
   // Normalized to mean 1 over all rows (gradient and primal), then the user's weights.
   const float scale = float(double(b.size() + n) / total);
   const float alpha2 = alpha * alpha;
-  if (rhs_out && !m_factor_ic) {
-    // One pass: scaled weights, diagonal and right-hand side. A pixel's left and upper
-    // neighbours' final weights are recomputed from their raw values with the same float
-    // operations (bitwise equal, and independent of which thread scales them), so the
-    // rows need no ordering between threads.
-    const auto fx = [&](size_t i, int x, int y) {
-      return m_raw_wx[i] * (scale * (user_rows ? user_rows[size_t(y) * size_t(w - 1) + size_t(x)] : 1.0f));
-    };
-    const auto fy = [&](size_t i) { return m_raw_wy[i] * (scale * (user_rows ? user_rows[dy0 + i] : 1.0f)); };
-    m_raw_wx.swap(m_wx);
-    m_raw_wy.swap(m_wy);
-    run_team(threads, [&](int t) {
-      for (int y = int(part_begin(size_t(h), threads, t)), y1 = int(part_begin(size_t(h), threads, t + 1)); y < y1;
-           ++y)
-        for (int x = 0; x < w; ++x) {
-          const size_t i = size_t(y) * size_t(w) + size_t(x);
-          const size_t rx = size_t(y) * size_t(w - 1) + size_t(x), ry = dy0 + i;
-          const float wx = x + 1 < w ? fx(i, x, y) : 0.0f, wy = y + 1 < h ? fy(i) : 0.0f;
-          const float wl = x > 0 ? fx(i - 1, x - 1, y) : 0.0f, wu = y > 0 ? fy(i - size_t(w)) : 0.0f;
-          const float data = alpha2 * (m_data[i] * (scale * (user_pixels ? user_pixels[i] : 1.0f)));
-          m_wx[i] = wx;
-          m_wy[i] = wy;
-          m_data[i] = data;
-          // As factor(): the diagonal in double.
-          double d = double(data) + double(wx) + double(wy);
-          if (x > 0) d += double(wl);
-          if (y > 0) d += double(wu);
-          m_diag[i] = float(d);
-          // As rhs(): H^T W b + alpha^2 P g in double.
-          Rgbd acc = double(data) * Rgbd(double(g[i][0]), double(g[i][1]), double(g[i][2]));
-          if (x > 0) acc += double(wl) * b[rx - 1].cast<double>();
-          if (x + 1 < w) acc -= double(wx) * b[rx].cast<double>();
-          if (y > 0) acc += double(wu) * b[ry - size_t(w)].cast<double>();
-          if (y + 1 < h) acc -= double(wy) * b[ry].cast<double>();
-          rhs_out[i] = Vec4{float(acc[0]), float(acc[1]), float(acc[2]), 0.0f};
-        }
-    });
-    return total;
-  }
   run_team(threads, [&](int t) {
     for (int y = int(part_begin(size_t(h), threads, t)), y1 = int(part_begin(size_t(h), threads, t + 1)); y < y1; ++y)
       for (int x = 0; x < w; ++x) {
@@ -156,7 +114,6 @@ double GridOperator::set_irls_weights(const Vec4* image, const std::vector<Rgb>&
       }
   });
   factor(threads);
-  if (rhs_out) rhs(b, g, rhs_out, threads);
   return total;
 }
 

@@ -25,10 +25,9 @@ class GridOperator final : public ChunkedOperator {
   // rows); the weights are normalized to mean 1 over all rows, multiplied by the user's
   // row / pixel weights (nullptr = 1), and set as by set_weights(). Same values as
   // computing them over the kernel's pairs, without the index arrays. Returns the sum of
-  // the raw weights. If rhs_out != nullptr it also receives rhs(b, g) for the new weights
-  // (the same values, computed in the pass that scales the weights: one pass less).
+  // the raw weights.
   double set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
-                          const float* user_rows, const float* user_pixels, int threads, Vec4* rhs_out = nullptr);
+                          const float* user_rows, const float* user_pixels, int threads);
   // Whether set_weights / set_irls_weights also factor the block incomplete Cholesky
   // preconditioner (default true; precondition()/update() need it). The multigrid
   // solver (multigrid.h) only needs the diagonal.
@@ -69,7 +68,6 @@ class GridOperator final : public ChunkedOperator {
   int m_w, m_h;
   std::vector<int> m_chunk_rows;
   std::vector<float> m_wx, m_wy;   // per pixel: weight of its dx / dy row (0 if absent)
-  std::vector<float> m_raw_wx, m_raw_wy;  // set_irls_weights' unscaled weights (fused path)
   std::vector<float> m_data;       // alpha^2 p_i
   std::vector<float> m_diag;       // sum of the pixel's row weights + alpha^2 p_i
   // Block incomplete Cholesky factor, scaled for short dependency chains in the

@@ -268,10 +268,9 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
     // Reference IRLS schedule (ALGORITHMS.md): reg = 0.05 * 0.5^(k-1), w = 1/(|e|_2 + reg).
     const double reg = 0.05 * std::pow(0.5, it - 1);
     if (GridOperator* grid = A.grid()) {
-      // The same weights without the kernel's index arrays, and the right-hand side.
-      rhs.resize(n);
+      // The same weights without the kernel's index arrays.
       grid->set_irls_weights(x.data(), in.b, g4.data(), reg, alpha, in.row_w.empty() ? nullptr : in.row_w.data(),
-                             in.pixel_w.empty() ? nullptr : in.pixel_w.data(), threads, rhs.data());
+                             in.pixel_w.empty() ? nullptr : in.pixel_w.data(), threads);
     } else {
       run_team(threads, [&](int t) {
         double s = 0.0;
@@ -309,8 +308,8 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
           pixel_w[i] *= scale * (in.pixel_w.empty() ? 1.0f : in.pixel_w[i]);
       });
       A.set_weights(row_w, pixel_w, alpha, threads);
-      A.rhs(in.b, in.g, g4, rhs, threads);
     }
+    A.rhs(in.b, in.g, g4, rhs, threads);
     CgSettings s;
     s.max_iterations = options.irls_cg_iterations;
     s.tolerance = options.irls_cg_tolerance;

@@ -288,34 +288,3 @@ TEST_CASE("solve_l2 / solve_l1 with the multigrid grid solver match DCT and bloc
   CHECK(rms_diff(l1_mg.image, l1_ic.image) < 1e-2);
   CHECK(l1_mg.cg_iterations < l1_ic.cg_iterations);
 }
-
-TEST_CASE("the fused IRLS reweighting (weights, diagonal, rhs in one pass) equals the separate passes", "[unit]") {
-  core::Rng rng(36, 0);
-  const int w = 41, h = 29;
-  const Kernel k = Kernel::forward_differences(w, h);
-  const Problem p = random_grid_problem(w, h, rng, 0.2f);
-  const std::vector<float> user_rows = random_weights(k.rows(), rng, 1.0), user_pixels = random_weights(k.pixels(), rng, 1.0);
-  std::vector<Vec4> x(k.pixels()), g(k.pixels());
-  for (size_t i = 0; i < x.size(); ++i) {
-    g[i] = to_vec4(p.primal[i]);
-    x[i] = g[i] + Vec4{0.1f * rng.uniform(), -0.2f * rng.uniform(), 0.05f, 0.0f};
-  }
-  for (const bool user : {false, true}) {
-    GridOperator ref(w, h), fused(w, h);
-    fused.set_factor_preconditioner(false);
-    const float* ur = user ? user_rows.data() : nullptr;
-    const float* up = user ? user_pixels.data() : nullptr;
-    const double t_ref = ref.set_irls_weights(x.data(), p.b, g.data(), 1e-3, p.alpha, ur, up, 2);
-    std::vector<Vec4> rhs_ref(k.pixels()), rhs_fused(k.pixels());
-    ref.rhs(p.b, g.data(), rhs_ref.data(), 1);
-    const double t_fused = fused.set_irls_weights(x.data(), p.b, g.data(), 1e-3, p.alpha, ur, up, 2, rhs_fused.data());
-    CHECK(t_ref == t_fused);
-    for (size_t i = 0; i < x.size(); ++i) {
-      REQUIRE(ref.weights_x()[i] == fused.weights_x()[i]);
-      REQUIRE(ref.weights_y()[i] == fused.weights_y()[i]);
-      REQUIRE(ref.data_weights()[i] == fused.data_weights()[i]);
-      REQUIRE(ref.diagonal()[i] == fused.diagonal()[i]);
-      for (int c = 0; c < 3; ++c) REQUIRE(rhs_ref[i][c] == rhs_fused[i][c]);
-    }
-  }
-}
