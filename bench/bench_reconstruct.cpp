@@ -3,6 +3,8 @@
 // reweightings <= 3 s). Synthetic input: a smooth image with edges, primal noise
 // sigma 0.2, gradient noise sigma 0.02 (fixed seed). Prints CSV on stdout:
 //   case,width,height,threads,seconds,cg_iterations,relative_residual,rmse
+// Grid cases use the multigrid-preconditioned CG; the *_ic cases the block incomplete
+// Cholesky one (SolveOptions::grid_solver, issue 18).
 // Usage: bench_reconstruct [threads=2] [repeats=3] [case filter substring]
 // (the median over repeats is printed, then the minimum, then the median process CPU
 // time, which depends less on what else runs on the machine).
@@ -94,11 +96,13 @@ int main(int argc, char** argv) {
   const Problem grid = noisy(Kernel::forward_differences(w, h), truth, 1);
   const Problem four = noisy(four_pair_kernel(w, h), truth, 2);
   std::printf("case,width,height,threads,seconds,cg_iterations,relative_residual,rmse,min_seconds,cpu_seconds\n");
-  const auto run = [&](const char* name, const Problem& p, bool l1, L2Method method) {
+  const auto run = [&](const char* name, const Problem& p, bool l1, L2Method method,
+                       GridSolver grid_solver = GridSolver::multigrid) {
     if (std::string(name).find(filter) == std::string::npos) return;
     SolveOptions o;
     o.threads = threads;
     o.method = method;
+    o.grid_solver = grid_solver;
     SolveResult last;
     std::vector<double> seconds, cpu;
     for (int r = 0; r < repeats; ++r) {
@@ -116,7 +120,9 @@ int main(int argc, char** argv) {
   run("l2_grid_dct", grid, false, L2Method::direct);
   run("l2_pcg_4pairs", four, false, L2Method::cg);
   run("l2_grid_pcg", grid, false, L2Method::cg);
+  run("l2_grid_pcg_ic", grid, false, L2Method::cg, GridSolver::block_ic);
   run("l1_grid_irls20", grid, true, L2Method::automatic);
+  run("l1_grid_irls20_ic", grid, true, L2Method::automatic, GridSolver::block_ic);
   run("l1_4pairs_irls20", four, true, L2Method::automatic);
   return 0;
 }

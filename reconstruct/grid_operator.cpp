@@ -134,6 +134,7 @@ void GridOperator::factor(int threads) {
           if (x > 0) d += double(m_wx[i - 1]);
           if (y > 0) d += double(m_wy[i - size_t(w)]);
           m_diag[i] = float(d);
+          if (!m_factor_ic) continue;
           double piv = double(m_diag[i]);
           // (Modified IC, which also subtracts the dropped fill, needed more CG iterations
           // in IRLS: plain IC(0).)

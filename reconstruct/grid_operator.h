@@ -28,11 +28,21 @@ class GridOperator final : public ChunkedOperator {
   // the raw weights.
   double set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
                           const float* user_rows, const float* user_pixels, int threads);
+  // Whether set_weights / set_irls_weights also factor the block incomplete Cholesky
+  // preconditioner (default true; precondition()/update() need it). The multigrid
+  // solver (multigrid.h) only needs the diagonal.
+  void set_factor_preconditioner(bool on) { m_factor_ic = on; }
   // out = H^T W b + alpha^2 P g (sums in double).
   void rhs(const std::vector<Rgb>& b, const Vec4* g, Vec4* out, int threads) const;
 
   int width() const { return m_w; }
   int height() const { return m_h; }
+  // Per pixel: weight of its dx row, its dy row (0 where absent), alpha^2 p_i, and the
+  // diagonal of A (the multigrid hierarchy, multigrid.h, is built from these).
+  const float* weights_x() const { return m_wx.data(); }
+  const float* weights_y() const { return m_wy.data(); }
+  const float* data_weights() const { return m_data.data(); }
+  const float* diagonal() const { return m_diag.data(); }
   size_t pixels() const override { return size_t(m_w) * size_t(m_h); }
   size_t chunks() const override { return m_chunk_rows.size() - 1; }
   size_t chunk_begin(size_t c) const override { return size_t(m_chunk_rows[c]) * size_t(m_w); }
@@ -64,6 +74,7 @@ class GridOperator final : public ChunkedOperator {
   // substitutions: 1/D_i; forward t_i = r_i/D_i + fx_i t_{i-1} + fy_i t_{i-w};
   // backward z_i = t_i + bx_i z_{i+1} + by_i z_{i+w} (zero across chunk borders).
   std::vector<float> m_inv_pivot, m_fx, m_fy, m_bx, m_by;
+  bool m_factor_ic = true;
 };
 
 }  // namespace dp::reconstruct

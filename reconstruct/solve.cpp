@@ -10,6 +10,7 @@
 #include "reconstruct/dct_solver.h"
 #include "reconstruct/grid_operator.h"
 #include "reconstruct/laplacian.h"
+#include "reconstruct/multigrid.h"
 #include "reconstruct/pcg.h"
 
 namespace dp::reconstruct {
@@ -94,11 +95,25 @@ core::Image to_image(int width, int height, const std::vector<Vec4>& v) {
 // the CSR Laplacian for any other kernel.
 class Operator {
  public:
-  explicit Operator(const Kernel& k) {
-    if (k.is_forward_difference_grid())
+  Operator(const Kernel& k, GridSolver solver) {
+    if (k.is_forward_difference_grid()) {
       m_grid = std::make_unique<GridOperator>(k.width(), k.height());
-    else
+      if (solver == GridSolver::multigrid) {
+        m_mg = std::make_unique<GridMultigrid>();
+        m_grid->set_factor_preconditioner(false);
+      }
+    } else {
       m_csr = std::make_unique<Laplacian>(k);
+    }
+  }
+  const char* preconditioner() const { return m_mg ? "multigrid" : "block_ic"; }
+  // Preconditioned CG from x (warm start) with the current weights.
+  CgStats solve(const std::vector<Vec4>& rhs, std::vector<Vec4>& x, const CgSettings& s, CgWorkspace* ws) {
+    if (m_mg) {
+      m_mg->build(*m_grid, s.threads);
+      return mg_pcg(*m_grid, *m_mg, rhs.data(), x.data(), s, ws);
+    }
+    return pcg(op(), rhs.data(), x.data(), s, ws);
   }
   GridOperator* grid() { return m_grid.get(); }
   const ChunkedOperator& op() const {
@@ -128,6 +143,7 @@ class Operator {
 
  private:
   std::unique_ptr<GridOperator> m_grid;
+  std::unique_ptr<GridMultigrid> m_mg;
   std::unique_ptr<Laplacian> m_csr;
 };
 
@@ -179,7 +195,7 @@ CgStats l2_into(const Problem& problem, const Prepared& in, const std::vector<Ve
   s.max_iterations = cg_iterations;
   s.tolerance = cg_tolerance;
   s.threads = threads;
-  return pcg(A->op(), rhs.data(), x.data(), s);
+  return A->solve(rhs, x, s, nullptr);
 }
 
 bool choose_direct(const Problem& problem, const Prepared& in, L2Method method) {
@@ -203,7 +219,8 @@ SolveResult solve_l2(const Problem& problem, const SolveOptions& options) {
     l2_into(problem, in, {}, options, true, 0, 0.0, nullptr, x);
     result.method = "dct";
   } else {
-    Operator A(problem.kernel);
+    Operator A(problem.kernel, options.grid_solver);
+    result.preconditioner = A.preconditioner();
     const CgStats st = l2_into(problem, in, to_vec4(in.g), options, false, options.cg_max_iterations,
                                options.cg_tolerance, &A, x);
     result.method = "pcg";
@@ -227,11 +244,12 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
   const Kernel& k = problem.kernel;
   const size_t n = k.pixels(), rows = k.rows();
   const int threads = resolve_threads(options.threads);
-  Operator A(k);
+  Operator A(k, options.grid_solver);
   const std::vector<Vec4> g4 = to_vec4(in.g);
   std::vector<Vec4> x, rhs;
   SolveResult result;
   result.method = direct ? "irls+dct" : "irls+pcg";
+  if (!direct || options.reweightings > 0) result.preconditioner = A.preconditioner();
   // IRLS iteration 0: plain L2.
   CgStats st =
       l2_into(problem, in, g4, options, direct, options.irls_cg_iterations, options.irls_cg_tolerance, &A, x);
@@ -296,7 +314,7 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
     s.max_iterations = options.irls_cg_iterations;
     s.tolerance = options.irls_cg_tolerance;
     s.threads = threads;
-    st = pcg(A.op(), rhs.data(), x.data(), s, &workspace);  // warm start from the current image
+    st = A.solve(rhs, x, s, &workspace);  // warm start from the current image
     result.cg_iterations += st.iterations;
     result.relative_residual = st.relative_residual;
     result.reweightings = it;

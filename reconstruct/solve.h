@@ -4,9 +4,10 @@
 //   i.e. the normal equations (H^T W H + alpha^2 P) I = H^T W b + alpha^2 P I_g
 //   (Lehtinen et al. 2013, Eq. 8; unbiased when b and I_g are). Forward-difference grid
 //   kernels with uniform weights use the exact DCT solve (Bhat et al. 2008); everything
-//   else uses CG with a block incomplete Cholesky preconditioner (pcg.h) warm-started
-//   from the primal, on the index-free GridOperator for grid kernels and the CSR
-//   Laplacian for any other kernel.
+//   else uses preconditioned CG warm-started from the primal: on the index-free
+//   GridOperator for grid kernels, preconditioned by a multigrid V-cycle (multigrid.h;
+//   SolveOptions::grid_solver selects the block incomplete Cholesky instead), and on the
+//   CSR Laplacian with block incomplete Cholesky (pcg.h) for any other kernel.
 // solve_l1: the group-L1 problem sum_r |(H I - b)_r|_2 + sum_i alpha |I_i - I_g,i|_2
 //   (norms over RGB; Lehtinen 2013 Sec. 5, robust but biased) by iteratively reweighted
 //   least squares as in the reference solver (ALGORITHMS.md): iteration 0 is the L2
@@ -36,9 +37,18 @@ enum class L2Method {
   cg,         // preconditioned CG on the graph Laplacian (any kernel)
 };
 
+// Preconditioner of CG on forward-difference grid kernels (L1 IRLS on grids, weighted
+// or method == cg L2 grid solves). Both stop at the same relative residual; multigrid
+// needs ~3x fewer iterations (bench/RESULTS.md, issue 18).
+enum class GridSolver {
+  multigrid,  // geometric multigrid V-cycle, Galerkin 2x2 aggregation (multigrid.h)
+  block_ic,   // block incomplete Cholesky, barrier-free chunked CG (pcg.h)
+};
+
 struct SolveOptions {
   int threads = 0;  // 0 = all hardware threads
   L2Method method = L2Method::automatic;
+  GridSolver grid_solver = GridSolver::multigrid;
   // L2 CG: stop when ||rhs - A I|| <= cg_tolerance ||rhs|| per channel (the DCT is
   // exact). 1e-6 is near the float-storage floor and keeps CG within ~1e-6 of the
   // exact solution on [0, 1]-range images.
@@ -62,6 +72,7 @@ struct SolveResult {
   core::Image image;
   InputReport input;
   std::string method;              // "dct", "pcg", "irls+dct", "irls+pcg"
+  std::string preconditioner;      // of the CG runs: "multigrid", "block_ic" or "" (none ran)
   int cg_iterations = 0;           // total over all CG runs
   int reweightings = 0;            // L1 only
   double relative_residual = 0.0;  // of the last CG run (0 for the DCT)
