@@ -8,12 +8,13 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "experiments/yaml_check.h"
+#include "scene/yaml_values.h"
 
 namespace dp::experiments {
 
 namespace {
-using yamlx::Ctx;
+namespace yamlx = scene::yaml;
+using Ctx = yamlx::Context;
 
 std::string format_number(double v) {
   char buf[64];

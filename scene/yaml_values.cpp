@@ -92,31 +92,56 @@ YAML::Node require(const Context& ctx, const YAML::Node& map, const std::string&
   return v;
 }
 
-float get_float(const Context& ctx, const YAML::Node& node, const std::string& name) {
+double get_number(const Context& ctx, const YAML::Node& node, const std::string& name) {
   if (!is_plain_scalar(node)) parse_error(ctx, node, quoted(name) + ": expected a number, got " + type_name(node));
   const std::string& s = node.Scalar();
-  if (is_nonfinite_spelling(s)) value_error(ctx, node, quoted(name) + ": not a finite number (" + s + ")");
-  if (!core::is_decimal_number(s))
+  if (is_nonfinite_spelling(s)) value_error(ctx, node, quoted(name) + ": not a finite number (" + quote_input(s) + ")");
+  if (!core::is_decimal_number(s))  // std::strtod alone would also read hex ("0x10")
     parse_error(ctx, node, quoted(name) + ": expected a number, got '" + quote_input(s) + "'");
+  errno = 0;
   const double v = std::strtod(s.c_str(), nullptr);
-  if (!std::isfinite(v)) value_error(ctx, node, quoted(name) + ": not a finite number (" + quote_input(s) + ")");
+  if (errno == ERANGE || !std::isfinite(v))
+    value_error(ctx, node, quoted(name) + ": not a finite number (" + quote_input(s) + ")");
+  return v;
+}
+
+float get_float(const Context& ctx, const YAML::Node& node, const std::string& name) {
+  const double v = get_number(ctx, node, name);
+  const std::string& s = node.Scalar();
   if (!within_scene_limit(v))
     value_error(ctx, node, quoted(name) + ": " + quote_input(s) + " is beyond the scene limit (magnitude at most " +
                                kMaxSceneMagnitudeText + ")");
   return static_cast<float>(v);
 }
 
-int get_int(const Context& ctx, const YAML::Node& node, const std::string& name) {
+long long get_integer(const Context& ctx, const YAML::Node& node, const std::string& name) {
   if (!is_plain_scalar(node)) parse_error(ctx, node, quoted(name) + ": expected an integer, got " + type_name(node));
   const std::string& s = node.Scalar();
   errno = 0;
   char* end = nullptr;
-  const long v = std::strtol(s.c_str(), &end, 10);
+  const long long v = std::strtoll(s.c_str(), &end, 10);
   if (s.empty() || end != s.c_str() + s.size())
     parse_error(ctx, node, quoted(name) + ": expected an integer, got '" + quote_input(s) + "'");
-  if (errno == ERANGE || v > 1'000'000'000L || v < -1'000'000'000L)
-    value_error(ctx, node, quoted(name) + ": integer out of range (" + quote_input(s) + ")");
+  if (errno == ERANGE) value_error(ctx, node, quoted(name) + ": integer out of range (" + quote_input(s) + ")");
+  return v;
+}
+
+int get_int(const Context& ctx, const YAML::Node& node, const std::string& name) {
+  const long long v = get_integer(ctx, node, name);
+  if (v > 1'000'000'000LL || v < -1'000'000'000LL)
+    value_error(ctx, node, quoted(name) + ": integer out of range (" + quote_input(node.Scalar()) + ")");
   return int(v);
+}
+
+std::vector<YAML::Node> get_list(const Context& ctx, const YAML::Node& node, const std::string& name, bool allow_scalar) {
+  std::vector<YAML::Node> out;
+  if (allow_scalar && node.IsScalar()) {
+    out.push_back(node);
+    return out;
+  }
+  if (!node.IsSequence()) parse_error(ctx, node, quoted(name) + ": expected a list, got " + type_name(node));
+  for (const auto& n : node) out.push_back(n);
+  return out;
 }
 
 bool get_bool(const Context& ctx, const YAML::Node& node, const std::string& name) {
@@ -196,7 +221,7 @@ void check_nonnegative(const Context& ctx, const YAML::Node& node, const std::st
 
 std::string resolve_path(const Context& ctx, const std::string& relative) {
   const std::filesystem::path p(relative);
-  if (p.is_absolute() || ctx.base_dir.empty()) return p.string();
+  if (p.is_absolute() || ctx.base_dir.empty()) return p.lexically_normal().string();
   return (ctx.base_dir / p).lexically_normal().string();
 }
 

@@ -1,8 +1,9 @@
-// Typed access to yaml-cpp nodes for the scene loader. Every failure throws a dp::Error
-// subclass whose what() is "scene-file:line: problem", the line taken from the node's
+// Typed access to yaml-cpp nodes for the YAML scene loader and for experiment files (the
+// one YAML value helper of scene/ and experiments/). Every failure throws a dp::Error
+// subclass whose what() is "file:line: problem", the line taken from the node's
 // YAML::Mark (1-based): ParseError for structure (missing/unknown keys, wrong types,
 // undefined names), ValueError for values (non-finite numbers, out-of-range values).
-// Internal to the YAML front end (yaml_*.cpp); not part of the scene API.
+// Not part of the scene API.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -17,7 +18,7 @@
 namespace dp::scene::yaml {
 
 struct Context {
-  std::string file;                // the scene file, as given (used in messages)
+  std::string file;                // the scene or experiment file, as given (used in messages)
   std::filesystem::path base_dir;  // relative paths in the scene resolve against this
 };
 
@@ -38,10 +39,20 @@ void check_keys(const Context& ctx, const YAML::Node& map, const std::vector<std
 YAML::Node require(const Context& ctx, const YAML::Node& map, const std::string& key, const std::string& what);
 
 // Scalars. `name` is the key (or a description) used in messages.
+// A finite decimal number (ValueError for .inf/.nan or overflow, ParseError for "0x10").
+double get_number(const Context& ctx, const YAML::Node& node, const std::string& name);
+// get_number within the scene limit (scene/limits.h), as float.
 float get_float(const Context& ctx, const YAML::Node& node, const std::string& name);
+// A decimal integer (ParseError for "3.5"; ValueError beyond long long).
+long long get_integer(const Context& ctx, const YAML::Node& node, const std::string& name);
+// get_integer within +-1e9.
 int get_int(const Context& ctx, const YAML::Node& node, const std::string& name);
 bool get_bool(const Context& ctx, const YAML::Node& node, const std::string& name);
 std::string get_string(const Context& ctx, const YAML::Node& node, const std::string& name);
+
+// A list; a single scalar is accepted as a list of one when `allow_scalar`.
+std::vector<YAML::Node> get_list(const Context& ctx, const YAML::Node& node, const std::string& name,
+                                 bool allow_scalar = false);
 
 // Fixed-size lists of finite numbers.
 Vec2 get_vec2(const Context& ctx, const YAML::Node& node, const std::string& name);
