@@ -155,13 +155,7 @@ CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings
     }
   });
 
-  CgStats stats;
-  stats.iterations = it;
-  stats.converged = !(active[0] || active[1] || active[2]);
-  double rel = 0.0;
-  for (int c = 0; c < 3; ++c) rel = std::max(rel, bb[c] > 0.0 ? std::sqrt(rr[c] / bb[c]) : std::sqrt(rr[c]));
-  stats.relative_residual = rel;
-  return stats;
+  return cg_stats(it, active, rr, bb);
 }
 
 }  // namespace dp::reconstruct

@@ -21,6 +21,8 @@
 // which keeps every pivot positive (Meijerink & van der Vorst 1977).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "reconstruct/vec4.h"
@@ -61,6 +63,19 @@ struct CgStats {
   double relative_residual = 0.0;  // max over channels, from the recurrence
   bool converged = false;
 };
+
+// The stats of a 3-channel CG run after `iterations`: converged when no channel is still
+// active; the residual relative to |b| per channel (absolute where b = 0), the largest.
+template <class Flags, class Values>
+CgStats cg_stats(int iterations, const Flags& active, const Values& rr, const Values& bb) {
+  CgStats stats;
+  stats.iterations = iterations;
+  stats.converged = !(active[0] || active[1] || active[2]);
+  for (int c = 0; c < 3; ++c)
+    stats.relative_residual =
+        std::max(stats.relative_residual, bb[c] > 0.0 ? std::sqrt(rr[c] / bb[c]) : std::sqrt(rr[c]));
+  return stats;
+}
 
 // Scratch vectors of pcg(), kept between calls (IRLS solves many small CG runs: no
 // reallocation and page faults each time).
