@@ -18,6 +18,21 @@ void ScheduleResult::fill(RenderResult& result) const {
   result.max_spp = max_spp();
   result.partial = partial;
   result.info["passes"] = passes;
+  // Which pixels an interrupted (or time-cut) render lacks: their sample counts.
+  if (partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", spp_image()});
+}
+
+core::Image ScheduleResult::spp_image() const {
+  int width = 0, height = 0;
+  for (const Tile& t : tiles) {
+    width = std::max(width, t.x1);
+    height = std::max(height, t.y1);
+  }
+  core::Image image(width, height);
+  for (const Tile& t : tiles)
+    for (int y = t.y0; y < t.y1; ++y)
+      for (int x = t.x0; x < t.x1; ++x) image(x, y) = Rgb::Constant(float(tile_spp[size_t(t.index)]));
+  return image;
 }
 
 int64_t ScheduleResult::min_spp() const {

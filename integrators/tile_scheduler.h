@@ -36,7 +36,11 @@ struct ScheduleResult {
   int64_t max_spp() const;
   // Per-pixel sample count image helper.
   int64_t spp_at(int x, int y) const;
-  // Copies wall time, min/max spp, `partial` and info["passes"] into a render result.
+  // The per-pixel sample counts as an image (every channel).
+  core::Image spp_image() const;
+  // Copies wall time, min/max spp, `partial` and info["passes"] into a render result, and
+  // appends the layer "spp" (spp_image) when the render is partial or its counts differ
+  // between pixels (a time budget ending inside a pass), so the image says what it lacks.
   void fill(RenderResult& result) const;
   int tiles_x = 0;
 };

@@ -71,6 +71,7 @@ run_and_signal() {
 run_and_signal "$tmp/term" 1.5 TERM "$tmp/box.yaml" --time 120 --threads 2
 check "SIGTERM during render exits 143 (got $code)" test "$code" = 143
 check_partial_outputs "$tmp/term" "SIGTERM"
+check "SIGTERM: the exr says which pixels it lacks (layer spp)" "$bin" layer "$tmp/term/out.exr" spp --out "$tmp/term/spp.exr"
 run_and_signal "$tmp/int" 1.5 INT "$tmp/box.yaml" --time 120 --threads 2
 check "SIGINT during render exits 130 (got $code)" test "$code" = 130
 check_partial_outputs "$tmp/int" "SIGINT"
