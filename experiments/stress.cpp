@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "core/timer.h"
@@ -37,8 +38,33 @@ int64_t StressReport::samples_dropped() const {
   return n;
 }
 
+namespace {
+
+// Integrators whose settings select another algorithm, stressed as well (name:key=value,...).
+constexpr const char* kSettingVariants[] = {"mlt:mutations=path"};
+
+// "name" or "name:key=value,key=value" (the settings of a variant).
+std::unique_ptr<integrators::Integrator> make_variant(const std::string& spec, integrators::Settings& settings) {
+  const size_t colon = spec.find(':');
+  if (colon == std::string::npos) return integrators::make_integrator(spec, settings);
+  size_t at = colon + 1;
+  while (at < spec.size()) {
+    const size_t end = std::min(spec.find(',', at), spec.size());
+    const std::string kv = spec.substr(at, end - at);
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos) throw ValueError("stress variant '" + spec + "': expected key=value, got '" + kv + "'", "--integrators");
+    settings.set(kv.substr(0, eq), kv.substr(eq + 1));
+    at = end + 1;
+  }
+  return integrators::make_integrator(spec.substr(0, colon), settings);
+}
+
+}  // namespace
+
 StressReport run_stress(const StressOptions& options) {
-  const std::vector<std::string> names = options.integrators.empty() ? integrators::integrator_names() : options.integrators;
+  std::vector<std::string> names = options.integrators.empty() ? integrators::integrator_names() : options.integrators;
+  if (options.integrators.empty())
+    for (const char* variant : kSettingVariants) names.push_back(variant);
   const int variants = options.variants > 0 ? options.variants : (options.quick ? 2 : 4);
   const int resolution = options.quick ? 32 : 64;
   const int spp = options.quick ? 4 : 16;
@@ -52,7 +78,7 @@ StressReport run_stress(const StressOptions& options) {
       for (int v = 0; v < variants; ++v) {
         const StressScene s = make_stress_scene(family, v, options.seed, resolution);
         integrators::Settings settings;
-        auto integrator = integrators::make_integrator(name, settings);
+        auto integrator = make_variant(name, settings);
         integrators::RenderOptions opt;
         opt.spp = spp;
         opt.seed = options.seed + uint64_t(v);
@@ -98,11 +124,11 @@ StressReport run_stress(const StressOptions& options) {
 std::string format_stress_report(const StressReport& report) {
   std::string out;
   char buf[512];
-  std::snprintf(buf, sizeof(buf), "%-15s %-10s %7s %14s %14s %12s %-10s %8s\n", "scene", "integrator", "renders",
+  std::snprintf(buf, sizeof(buf), "%-15s %-18s %7s %14s %14s %12s %-10s %8s\n", "scene", "integrator", "renders",
                 "nan_dropped", "nonfinite_px", "max_value", "(layer)", "seconds");
   out += buf;
   for (const auto& c : report.cases) {
-    std::snprintf(buf, sizeof(buf), "%-15s %-10s %7d %14lld %14llu %12.4g %-10s %8.2f%s\n", c.family.c_str(),
+    std::snprintf(buf, sizeof(buf), "%-15s %-18s %7d %14lld %14llu %12.4g %-10s %8.2f%s\n", c.family.c_str(),
                   c.integrator.c_str(), c.renders, static_cast<long long>(c.samples_dropped),
                   static_cast<unsigned long long>(c.nonfinite_pixels), c.max_value,
                   c.max_layer.empty() ? "-" : c.max_layer.c_str(), c.seconds,

@@ -1,5 +1,7 @@
 #include "pathspace/bidir_subpath.h"
 
+#include <limits>
+
 #include "core/warp.h"
 #include "pathspace/bidir_light.h"
 #include "pathspace/scatter.h"
@@ -65,10 +67,14 @@ namespace {
 
 // Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
 // carried by the ray. Densities from vertex positions (bidir_vertex.h).
+// `from`: the surface vertex the ray leaves (anchored at it), or null for a ray from an
+// endpoint.
 void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportMode mode,
-                 const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path) {
+                 const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path,
+                 const scene::SurfaceHit* from = nullptr) {
   scene::SurfaceHit hit;
-  bool from_surface = false;  // the ray leaves the surface vertex `hit` (anchored at it)
+  bool from_surface = from != nullptr;  // the ray leaves the surface vertex `hit` (anchored at it)
+  if (from) hit = *from;
   while (int(path.size()) < params.max_vertices) {
     if (!(from_surface ? next_hit(scene, hit, ray.d, hit) : scene.intersect(ray, hit))) {
       if (mode == scene::TransportMode::radiance && scene.environment()) add_environment_vertex(scene, ray.d, beta, path);
@@ -165,6 +171,85 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
   random_walk(scene, ray, Rgb::Ones(), scene::TransportMode::radiance, params, rng, out);
 }
 
+namespace {
+
+// Emission from a finite light point y0 (area, point, spot) along a direction drawn with
+// u_dir: the ray, its solid-angle density.
+bool finite_emission(const scene::Scene& scene, const BidirVertex& y0, const Vec2& u_dir, Ray& ray, float& pdf) {
+  const scene::Emitter* e = y0.emitter;
+  Vec3 w;
+  if (e->kind() == scene::EmitterKind::area) {
+    w = y0.sp.shading.to_world(core::warp::square_to_cosine_hemisphere(u_dir));
+    ray = anchored_ray(scene, y0.sp.p, w);
+  } else if (e->kind() == scene::EmitterKind::point || e->kind() == scene::EmitterKind::spot) {
+    if (e->kind() == scene::EmitterKind::point) {
+      w = core::warp::square_to_uniform_sphere(u_dir);
+    } else {
+      const auto* spot = static_cast<const scene::SpotEmitter*>(e);
+      w = spot->frame().to_world(core::warp::square_to_uniform_cone(u_dir, spot->cos_cutoff()));
+    }
+    ray.o = y0.sp.p;
+    ray.d = w;
+    ray.tmin = 0.0f;
+    ray.tmax = kInfinity;
+  } else {
+    return false;
+  }
+  pdf = light_pdf_dir(y0, w);
+  return pdf > 0.0f;
+}
+
+// y_0 on the light `e` (u_pos: its position; u_dir: the direction, or for lights at
+// infinity the direction toward them) and the ray leaving it with the ray's density.
+bool light_endpoint(const scene::Scene& scene, const scene::Emitter* e, const Vec2& u_pos, const Vec2& u_dir,
+                    BidirVertex& y0, Ray& ray, float& pdf_ray) {
+  y0 = BidirVertex{};
+  y0.kind = BidirKind::light;
+  y0.emitter = e;
+  if (e->kind() == scene::EmitterKind::area) {
+    const scene::PositionSample ps = static_cast<const scene::AreaEmitter*>(e)->shape()->sample_area(u_pos);
+    y0.sp.p = ps.p;
+    y0.sp.ng = ps.n;
+    y0.sp.shading = Frame::from_normal(ps.n);
+    y0.sp.uv = ps.uv;
+  } else if (e->kind() == scene::EmitterKind::point) {
+    y0.sp.p = static_cast<const scene::PointEmitter*>(e)->position();
+  } else if (e->kind() == scene::EmitterKind::spot) {
+    y0.sp.p = static_cast<const scene::SpotEmitter*>(e)->position();
+  } else {
+    // At infinity (environment, directional): a direction toward the light, then a ray
+    // origin on a disk of radius R across it, outside the scene (bidir_light.h).
+    const scene::DirectSample ds = e->sample_direct(scene.bounds().center(), u_dir);
+    if (!(ds.pdf > 0.0f)) return false;
+    const float r = infinite_disk_radius(scene);
+    const Vec2 disk = core::warp::square_to_uniform_disk_concentric(u_pos);
+    const Frame f = Frame::from_normal(ds.wi);
+    y0.sp.ng = ds.wi;
+    y0.sp.p = scene.bounds().center() + r * f.to_world(Vec3(disk.x(), disk.y(), 1.0f));
+    ray.o = y0.sp.p;
+    ray.d = -ds.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = kInfinity;
+    pdf_ray = 1.0f / (kPi * r * r);  // a planar origin
+  }
+  y0.pdf_fwd = light_pdf_pos(scene, y0);
+  if (!(y0.pdf_fwd > 0.0f)) return false;
+  y0.beta = Rgb::Constant(1.0f / y0.pdf_fwd);
+  return y0.infinite() || finite_emission(scene, y0, u_dir, ray, pdf_ray);
+}
+
+// Records the ray leaving the light endpoint path[0] (density pdf_ray) and returns the
+// throughput it carries.
+Rgb leave_light(std::vector<BidirVertex>& path, const Ray& ray, float pdf_ray) {
+  BidirVertex& y0 = path[0];
+  const Rgb emit = light_emit_cos(y0, ray.d);
+  y0.pdf_out = pdf_ray;
+  y0.weight_out = emit / pdf_ray;
+  return y0.beta * emit / pdf_ray;
+}
+
+}  // namespace
+
 void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
                    std::vector<BidirVertex>& out) {
   out.clear();
@@ -174,60 +259,92 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
   const scene::Emitter* e = scene.sample_emitter(u_light, pmf);
   if (!e || params.max_vertices < 1) return;
   BidirVertex y0;
-  y0.kind = BidirKind::light;
-  y0.emitter = e;
   Ray ray;
-  Vec3 w;
-  if (e->kind() == scene::EmitterKind::area) {
-    const scene::PositionSample ps = static_cast<const scene::AreaEmitter*>(e)->shape()->sample_area(u_pos);
-    y0.sp.p = ps.p;
-    y0.sp.ng = ps.n;
-    y0.sp.shading = Frame::from_normal(ps.n);
-    y0.sp.uv = ps.uv;
-    w = y0.sp.shading.to_world(core::warp::square_to_cosine_hemisphere(u_dir));
-    ray = anchored_ray(scene, y0.sp.p, w);
-  } else if (e->kind() == scene::EmitterKind::point || e->kind() == scene::EmitterKind::spot) {
-    if (e->kind() == scene::EmitterKind::point) {
-      y0.sp.p = static_cast<const scene::PointEmitter*>(e)->position();
-      w = core::warp::square_to_uniform_sphere(u_dir);
-    } else {
-      const auto* spot = static_cast<const scene::SpotEmitter*>(e);
-      y0.sp.p = spot->position();
-      w = spot->frame().to_world(core::warp::square_to_uniform_cone(u_dir, spot->cos_cutoff()));
-    }
-    ray.o = y0.sp.p;
-    ray.d = w;
-    ray.tmin = 0.0f;
-    ray.tmax = kInfinity;
-  } else {
-    // At infinity (environment, directional): a direction toward the light, then a ray
-    // origin on a disk of radius R across it, outside the scene (bidir_light.h).
-    const scene::DirectSample ds = e->sample_direct(scene.bounds().center(), u_dir);
-    if (!(ds.pdf > 0.0f)) return;
-    const float r = infinite_disk_radius(scene);
-    const Vec2 disk = core::warp::square_to_uniform_disk_concentric(u_pos);
-    const Frame f = Frame::from_normal(ds.wi);
-    y0.sp.ng = ds.wi;
-    y0.sp.p = scene.bounds().center() + r * f.to_world(Vec3(disk.x(), disk.y(), 1.0f));
-    w = -ds.wi;
-    ray.o = y0.sp.p;
-    ray.d = w;
-    ray.tmin = 0.0f;
-    ray.tmax = kInfinity;
+  float pdf_ray = 0.0f;
+  if (!light_endpoint(scene, e, u_pos, u_dir, y0, ray, pdf_ray)) {
+    // Densities of zero (a back-facing or cut-off direction) keep the endpoint, as before.
+    if (y0.pdf_fwd > 0.0f && !y0.infinite()) out.push_back(y0);
+    return;
   }
-  y0.pdf_fwd = light_pdf_pos(scene, y0);
-  if (!(y0.pdf_fwd > 0.0f)) return;
-  y0.beta = Rgb::Constant(1.0f / y0.pdf_fwd);
   out.push_back(y0);
-  // Density of the ray: a direction (finite lights) or a planar origin (at infinity).
-  const float r = infinite_disk_radius(scene);
-  const float pdf_ray = y0.infinite() ? 1.0f / (kPi * r * r) : light_pdf_dir(y0, w);
-  if (!(pdf_ray > 0.0f) || params.max_vertices < 2) return;
-  const Rgb beta = y0.beta * light_emit_cos(y0, w) / pdf_ray;
-  if (is_black(beta)) return;
-  out[0].pdf_out = pdf_ray;
-  out[0].weight_out = light_emit_cos(y0, w) / pdf_ray;
+  if (params.max_vertices < 2) return;
+  const Rgb beta = leave_light(out, ray, pdf_ray);
+  if (is_black(beta)) {
+    out[0].pdf_out = 0.0f;
+    out[0].weight_out = Rgb::Zero();
+    return;
+  }
   random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
+}
+
+bool extend_subpath(const scene::Scene& scene, std::vector<BidirVertex>& path, int n, scene::TransportMode mode,
+                    core::Rng& rng) {
+  if (n <= 0) return n == 0;
+  const size_t target = path.size() + size_t(n);
+  SubpathParams params;
+  params.max_vertices = int(target);
+  params.rr_depth = std::numeric_limits<int>::max();
+  Ray ray;
+  Rgb beta = Rgb::Ones();
+  const scene::SurfaceHit* from = nullptr;
+  scene::SurfaceHit at;
+  const bool radiance = mode == scene::TransportMode::radiance;
+  if (path.empty() && radiance) {
+    const scene::PerspectiveCamera& cam = scene.camera();
+    BidirVertex z0;
+    z0.kind = BidirKind::camera;
+    z0.sp.p = cam.position();
+    z0.sp.ng = cam.forward();
+    z0.pdf_fwd = 1.0f;
+    path.push_back(z0);
+    if (path.size() == target) return true;
+    // The raster uniform on the whole image (the density camera pdfs use).
+    const Vec2 u = rng.uniform2();
+    const Vec2 raster(std::min(u.x() * float(cam.width()), std::nextafter(float(cam.width()), 0.0f)),
+                      std::min(u.y() * float(cam.height()), std::nextafter(float(cam.height()), 0.0f)));
+    ray = cam.generate_ray(raster);
+    path[0].pdf_out = cam.pdf_direction(ray.d);
+    path[0].weight_out = Rgb::Ones();
+  } else if (path.empty()) {
+    const float u_light = rng.uniform();
+    const Vec2 u_pos = rng.uniform2(), u_dir = rng.uniform2();
+    float pmf = 0.0f;
+    const scene::Emitter* e = scene.sample_emitter(u_light, pmf);
+    BidirVertex y0;
+    float pdf_ray = 0.0f;
+    if (!e || !light_endpoint(scene, e, u_pos, u_dir, y0, ray, pdf_ray)) return false;
+    path.push_back(y0);
+    if (path.size() == target) return true;
+    beta = leave_light(path, ray, pdf_ray);
+  } else if (path.back().kind == BidirKind::light) {
+    // A kept finite light point emits anew.
+    float pdf_ray = 0.0f;
+    if (path.back().infinite() || !finite_emission(scene, path.back(), rng.uniform2(), ray, pdf_ray)) return false;
+    beta = leave_light(path, ray, pdf_ray);
+  } else {
+    BidirVertex& v = path.back();
+    if (v.kind != BidirKind::surface || !v.bsdf) return false;
+    const Vec3 wi_local = v.sp.shading.to_local(v.wi);
+    if (!(v.sp.ng.dot(v.wi) * wi_local.z() > 0.0f)) return false;
+    const float u_lobe = rng.uniform();
+    const Vec2 u = rng.uniform2();
+    const auto bs = v.bsdf->sample(scene::BsdfContext{v.sp.uv, mode}, wi_local, u_lobe, u);
+    if (!bs || is_black(bs->weight)) return false;
+    const Vec3 wo = v.sp.shading.to_world(bs->wo);
+    if (!(v.sp.ng.dot(wo) * bs->wo.z() > 0.0f)) return false;
+    v.delta = bs->is_delta();
+    v.lobe = bs->lobe;
+    v.u_lobe = u_lobe;
+    v.pdf_out = bs->pdf;
+    v.rr_out = 1.0f;
+    v.weight_out = bs->weight;
+    at = surface_hit(v);
+    from = &at;
+    ray = continue_ray(scene, at, wo);
+  }
+  if (is_black(beta)) return false;
+  random_walk(scene, ray, beta, mode, params, rng, path, from);
+  return path.size() == target;
 }
 
 }  // namespace dp::pathspace

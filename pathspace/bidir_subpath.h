@@ -29,6 +29,18 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
 void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
                    std::vector<BidirVertex>& out);
 
+// Continues `path` (a subpath in `mode`'s order: light-first for importance, camera-
+// first for radiance) by exactly n vertices, without Russian roulette: an empty path
+// starts at a new endpoint (the pinhole, then a raster uniform on the whole image; a
+// light chosen by Scene::sample_emitter), a kept light point emits anew, a surface
+// vertex samples its BSDF (its wi must be set; delta, lobe, u_lobe, pdf_out set here).
+// False if the walk ends before n vertices (a miss, a surface without material, a
+// sidedness violation, a light at infinity or the pinhole to continue from). The
+// path-space mutations' walks (mcmc/mut_bidir.h); a radiance walk that escapes ends
+// on an environment vertex, which the caller must accept or refuse.
+bool extend_subpath(const scene::Scene& scene, std::vector<BidirVertex>& path, int n, scene::TransportMode mode,
+                    core::Rng& rng);
+
 // Rays between subpath vertices leave from the vertex itself (pathspace/scatter.h,
 // trace_from: not Scene::spawn_ray's origin pushed along the normal), so consecutive
 // vertices lie on the sampled directions and the densities, cosines and shift Jacobians

@@ -4,11 +4,17 @@
 
 #include "core/timer.h"
 #include "integrators/mcmc_driver.h"
+#include "integrators/mlt/mlt_path.h"
 #include "mcmc/path_target.h"
 
 namespace dp::integrators {
 
 RenderResult MltIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
+  if (m_settings.path_space) {
+    RenderResult result = render_mlt_path(scene, options, m_settings);
+    result.info["settings"] = m_json;
+    return result;
+  }
   core::Timer timer;
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();

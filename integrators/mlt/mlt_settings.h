@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "integrators/settings.h"
 #include "mcmc/chain.h"
+#include "mcmc/mut_bidir.h"
 
 namespace dp::integrators {
 
@@ -16,6 +18,12 @@ struct MltSettings {
   int chains = 0;                // independent chains; 0 = 4 per thread
   int rr_depth = 5;              // Russian roulette after this many segments (as PT)
   bool nee = true;               // next-event estimation with MIS inside each path (as PT)
+  // Path-space chains (docs/memlt_plan.md): mutations=path, the mutator set, Veach's
+  // bidirectional mutation only so far.
+  bool path_space = false;
+  std::string mutators = "bidir";
+  // Not a --set key: a deliberate defect of the bidirectional mutation (tests).
+  mcmc::BidirMutationFault path_fault = mcmc::BidirMutationFault::none;
   // Not a --set key: tests replace it by an asymmetric step the render must be rejected for.
   mcmc::SmallStep small_step = mcmc::kelemen_small_step;
 

@@ -1,0 +1,107 @@
+#include "integrators/mlt/mlt_path.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "integrators/chain_scheduler.h"
+#include "integrators/tile_scheduler.h"
+#include "mcmc/path_chain.h"
+#include "mcmc/path_seed.h"
+
+namespace dp::integrators {
+
+RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings) {
+  core::Timer timer;
+  const auto& cam = scene.camera();
+  const int w = cam.width(), h = cam.height();
+  const int64_t pixels = int64_t(w) * h;
+  const int threads = resolve_threads(options);
+
+  mcmc::PathSeedOptions so;
+  so.max_depth = options.max_depth;
+  so.rr_depth = settings.rr_depth;
+  so.samples = settings.bootstrap;
+  so.seed = options.seed;
+  so.threads = threads;
+  const mcmc::PathSeeder seeder(scene, so);
+  const double bootstrap_seconds = timer.seconds();
+
+  mcmc::BidirLengths lengths;
+  lengths.k_min = 3;  // depth 1: a light seen directly
+  lengths.k_max = options.max_depth + 2;
+  const mcmc::BidirMutation mutation(scene, lengths, settings.path_fault);
+  const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
+  std::vector<mcmc::PathChain> chains;
+  int64_t seed_retries = 0;
+  {
+    mcmc::PathState x;
+    mcmc::PathSides sides;
+    for (int c = 0; c < n_chains; ++c) {
+      // Start path: a BDPT path chosen with probability proportional to lum(w C) (path_seed.h).
+      core::Rng pick(options.seed, core::mix64(0x57A7'0000'0000ull + uint64_t(c)));
+      int tries = 0;
+      while (!seeder.select(pick.uniform_double(), x, sides))
+        if (++tries == 100) throw Error("mlt (mutations=path): no BDPT seed path evaluates; cannot start chain " +
+                                        std::to_string(c));
+      seed_retries += tries;
+      chains.emplace_back(mutation, options.seed, uint64_t(c));
+      chains.back().start(x);
+    }
+  }
+
+  ChainSchedule sc;
+  sc.chains = n_chains;
+  sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
+  sc.round = std::max<int64_t>(1, pixels / std::max(1, sc.chains));
+  sc.pixels = pixels;
+  std::vector<mcmc::PathChainCounters> counters(static_cast<size_t>(n_chains));
+  auto splat = [&](const mcmc::PathSplat& p, double weight, SplatList& out) {
+    const int px = std::clamp(int(p.raster.x()), 0, w - 1), py = std::clamp(int(p.raster.y()), 0, h - 1);
+    out.add(0, int64_t(py) * w + px, p.colour.cast<double>() * weight);
+  };
+  const ChainRunResult run = run_chains(sc, options, "mlt", [&](int c, int64_t n, SplatList& out, int) {
+    mcmc::PathChain& chain = chains[size_t(c)];
+    for (int64_t m = 0; m < n; ++m) {
+      const mcmc::PathStep st = chain.step();
+      // Expected-value splatting (Veach 1997, Sec. 11.3.3): x with 1 - a, y with a.
+      if (st.a < 1.0) splat(st.current, 1.0 - st.a, out);
+      if (st.a > 0.0) splat(st.proposed, st.a, out);
+    }
+    counters[size_t(c)] = chain.counters();
+  });
+
+  RenderResult result;
+  const double scale = run.total_mutations > 0 ? seeder.b() * double(pixels) / double(run.total_mutations) : 0.0;
+  core::Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img(x, y) = (run.sums[0][size_t(y) * size_t(w) + size_t(x)] * scale).cast<float>();
+  result.layers.push_back({"", std::move(img)});
+
+  mcmc::PathChainCounters sum;
+  for (const auto& c : counters) sum.merge(c);  // chain order
+  result.stats.add("mlt.mutations", run.total_mutations);
+  result.stats.add("mlt.path.proposed", sum.proposed);
+  result.stats.add("mlt.path.accepted", sum.accepted);
+  for (size_t i = 0; i < sum.status.size(); ++i)
+    result.stats.add(std::string("mlt.path.bidir.") + mcmc::proposal_status_name(mcmc::ProposalStatus(i)),
+                     sum.status[i]);
+  result.stats.add("mlt.path.invalid", sum.invalid);
+  result.stats.add("mlt.path.seed_retries", seed_retries);
+  result.stats.add("mlt.nan_dropped", seeder.invalid() + sum.invalid);
+  result.stats.add("mlt.bootstrap_samples", seeder.samples());
+  result.min_spp = result.max_spp = run.total_mutations / pixels;
+  result.info["state_space"] = "path";
+  result.info["b"] = seeder.b();
+  result.info["bootstrap_seconds"] = bootstrap_seconds;
+  result.info["chain_seconds"] = run.seconds;
+  result.info["acceptance_rate"] = sum.proposed > 0 ? double(sum.accepted) / double(sum.proposed) : 0.0;
+  result.info["chains"] = n_chains;
+  result.info["rounds"] = run.rounds;
+  result.info["mutations_per_pixel"] = double(run.total_mutations) / double(pixels);
+  result.wall_seconds = timer.seconds();
+  result.partial = run.partial;
+  return result;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,19 @@
+// `mlt --set mutations=path`: Metropolis light transport over path space (Veach 1997,
+// Ch. 11) with the mutations of mcmc/ (so far Veach's bidirectional mutation,
+// mcmc/mut_bidir.h). The normalisation b and the start paths come from BDPT samples
+// (mcmc/path_seed.h); `chains` chains run in rounds (chain_scheduler.h: the image
+// depends on the seed and the chain count, not on the thread count); every step splats
+// the current path with weight 1 - a and the proposal with a (Veach 1997, Sec. 11.3.3);
+// image = b W H / mutations * splats (McmcDriver's scale). Unlike PSSMLT, b is the
+// seeder's alone (no large steps).
+#pragma once
+
+#include "core/json.h"
+#include "integrators/integrator.h"
+#include "integrators/mlt/mlt_settings.h"
+
+namespace dp::integrators {
+
+RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings);
+
+}  // namespace dp::integrators

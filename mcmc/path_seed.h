@@ -1,0 +1,48 @@
+// Start states and the normalisation of path-space chains (Veach 1997, Sec. 11.3.1-2; as
+// Mitsuba 0.6's path sampler, docs/memlt_plan.md Sec. 4): n independent BDPT samples
+// (one camera subpath through a raster uniform on the whole image, one light subpath,
+// every strategy (s, t) with power-heuristic MIS) give
+//   b = mean over samples of sum_st lum(w_st C_st) = integral of lum F (the mean pixel
+//       luminance in McmcDriver's units: pixel = b W H / mutations * splats),
+// and a start path is the (s, t) path of one sample chosen with probability proportional
+// to lum(w_st C_st). Its density is sum_st p_st w_st lum C_st / b' = lum F / b' whatever
+// the MIS weights (sampling-importance-resampling: no burn-in). Sample i uses its own
+// random stream (seed, i), so b and every start depend on the seed only, not on the
+// thread count, and a chosen sample is rebuilt by re-running its stream.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mcmc/path_state.h"
+
+namespace dp::mcmc {
+
+struct PathSeedOptions {
+  int max_depth = 8;  // paths of at most this many segments
+  int rr_depth = 5;   // BDPT's Russian roulette (unbiased: b and the start law are unaffected)
+  int64_t samples = 100000;
+  uint64_t seed = 0;
+  int threads = 1;
+};
+
+class PathSeeder {
+ public:
+  PathSeeder(const scene::Scene& scene, const PathSeedOptions& options);
+  double b() const { return m_b; }
+  int64_t samples() const { return int64_t(m_sum.size()); }
+  int64_t invalid() const { return m_invalid; }  // samples with a non-finite value (dropped)
+  // The start path for u in [0, 1): a sample chosen with probability proportional to its
+  // summed lum(w C), then one of its strategies with probability proportional to its
+  // own (the residual of u). False if every sample is zero or the path does not evaluate.
+  bool select(double u, PathState& out, PathSides& sides) const;
+
+ private:
+  const scene::Scene& m_scene;
+  PathSeedOptions m_opt;
+  std::vector<double> m_sum, m_cdf;  // per sample: sum_st lum(w_st C_st), and its running sum
+  double m_b = 0;
+  int64_t m_invalid = 0;
+};
+
+}  // namespace dp::mcmc
