@@ -11,20 +11,6 @@ namespace dp::mcmc {
 using pathspace::BidirKind;
 using pathspace::BidirVertex;
 
-const char* proposal_status_name(ProposalStatus s) {
-  switch (s) {
-    case ProposalStatus::ok: return "ok";
-    case ProposalStatus::no_choice: return "no_choice";
-    case ProposalStatus::walk_ended: return "walk_ended";
-    case ProposalStatus::light_not_found: return "light_not_found";
-    case ProposalStatus::escaped: return "escaped";
-    case ProposalStatus::occluded: return "occluded";
-    case ProposalStatus::zero: return "zero";
-    case ProposalStatus::count: break;
-  }
-  return "?";
-}
-
 namespace {
 
 Vec3 toward(const BidirVertex& from, const BidirVertex& to) {
@@ -64,8 +50,13 @@ BidirShape BidirMutation::shape(const PathState& x) const {
   return sh;
 }
 
-ProposalStatus BidirMutation::sample(const PathState& x, PathState& y, BidirChoice& rec, core::Rng& rng,
+ProposalStatus BidirMutation::sample(const PathState& x, PathState& y, MutationRecord& rec, core::Rng& rng,
                                      PathSides& sides) const {
+  return sample_choice(x, y, rec.bidir, rng, sides);
+}
+
+ProposalStatus BidirMutation::sample_choice(const PathState& x, PathState& y, BidirChoice& rec, core::Rng& rng,
+                                            PathSides& sides) const {
   pathspace::IndependentStream stream(rng);
   if (!sample_bidir_choice(shape(x), m_lengths, stream, rec)) return ProposalStatus::no_choice;
   const int K = x.depth(), L = rec.l, M = rec.m - 1;  // x_0..x_{L-1} and x_M..x_K are kept
@@ -130,14 +121,15 @@ double BidirMutation::inverse_weight(const BidirShape& pmf_shape, const BidirSha
   return pmf * sum;
 }
 
-double BidirMutation::acceptance(const PathState& x, const PathState& y, const BidirChoice& rec) const {
+double BidirMutation::ratio(const PathState& x, const PathState& y, const MutationRecord& r) const {
+  const BidirChoice& rec = r.bidir;
   const double fwd = inverse_weight(x, y, rec);
   BidirChoice back = rec.reverse();
   back.s = rec.s;  // read only by the sampled_split_only fault
   const BidirShape sy = shape(y);
   const double rev = inverse_weight(m_fault == BidirMutationFault::pmf_from_source ? shape(x) : sy, sy, x, back);
   if (!(fwd > 0.0) || !std::isfinite(fwd) || !std::isfinite(rev)) return 0.0;
-  return std::min(1.0, rev / fwd);
+  return rev / fwd;
 }
 
 }  // namespace dp::mcmc

@@ -16,27 +16,11 @@
 // numbers (the lobe's sample weight).
 #pragma once
 
-#include <array>
 #include <cstdint>
 
-#include "core/rng.h"
-#include "mcmc/bidir_choice.h"
-#include "mcmc/path_state.h"
+#include "mcmc/mutator.h"
 
 namespace dp::mcmc {
-
-// Why a proposal was not made (each counted; a failed proposal is a rejected step).
-enum class ProposalStatus : uint8_t {
-  ok,
-  no_choice,         // no admissible (k', kd, l, s) on x
-  walk_ended,        // a walk ended early (miss, no material, sidedness)
-  light_not_found,   // s = 0 from the light supernode: the camera walk did not end on a light
-  escaped,           // the camera walk escaped to the environment before its last vertex
-  occluded,          // the connection edge is blocked
-  zero,              // the sampled strategy contributes nothing (or nothing finite)
-  count
-};
-const char* proposal_status_name(ProposalStatus s);
 
 // Deliberate defects the tests must reject (tests/mcmc/test_mut_bidir.cpp); none in renders.
 enum class BidirMutationFault : uint8_t {
@@ -45,19 +29,23 @@ enum class BidirMutationFault : uint8_t {
   pmf_from_source,     // the reverse move's pmf is evaluated on x instead of y
 };
 
-class BidirMutation {
+class BidirMutation final : public Mutator {
  public:
   BidirMutation(const scene::Scene& scene, const BidirLengths& lengths,
                 BidirMutationFault fault = BidirMutationFault::none);
+  const char* name() const override { return "bidir"; }
+  bool suitable(const PathState&) const override { return true; }  // the only mutation that changes lengths
+  ProposalStatus sample(const PathState& x, PathState& y, MutationRecord& rec, core::Rng& rng,
+                        PathSides& sides) const override;
+  double ratio(const PathState& x, const PathState& y, const MutationRecord& rec) const override;
 
   // The extended-index shape of x: which vertices can bound a mutation.
   BidirShape shape(const PathState& x) const;
   // Proposes y from x (x unchanged). `rec` is the move, for inverse_weight().
-  ProposalStatus sample(const PathState& x, PathState& y, BidirChoice& rec, core::Rng& rng, PathSides& sides) const;
+  ProposalStatus sample_choice(const PathState& x, PathState& y, BidirChoice& rec, core::Rng& rng,
+                               PathSides& sides) const;
   // T(src -> dst) / F(dst) * p_kept for the move `rec` made on src (0 if the move cannot be made).
   double inverse_weight(const PathState& src, const PathState& dst, const BidirChoice& rec) const;
-  // a(x -> y) for the move rec on x (its reverse evaluated on y).
-  double acceptance(const PathState& x, const PathState& y, const BidirChoice& rec) const;
 
  private:
   // The same with the pmf taken on `pmf_shape` and the split range on `range_shape`

@@ -5,37 +5,76 @@
 
 namespace dp::mcmc {
 
-void PathChainCounters::merge(const PathChainCounters& o) {
+void MutatorCounters::merge(const MutatorCounters& o) {
   proposed += o.proposed;
   accepted += o.accepted;
   for (size_t i = 0; i < status.size(); ++i) status[i] += o.status[i];
-  invalid += o.invalid;
+  acceptance_sum += o.acceptance_sum;
 }
 
-PathChain::PathChain(const BidirMutation& mutation, uint64_t seed, uint64_t index)
-    : m_mutation(&mutation), m_rng(seed, core::mix64(0x9A7C'0000'0000ull + index)) {}
+void PathChainCounters::merge(const PathChainCounters& o) {
+  if (mutators.size() < o.mutators.size()) mutators.resize(o.mutators.size());
+  for (size_t i = 0; i < o.mutators.size(); ++i) mutators[i].merge(o.mutators[i]);
+  invalid += o.invalid;
+  stuck += o.stuck;
+}
+
+PathChain::PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index)
+    : m_mutators(std::move(mutators)), m_rng(seed, core::mix64(0x9A7C'0000'0000ull + index)) {
+  m_counters.mutators.resize(m_mutators.size());
+}
 
 void PathChain::start(const PathState& x) { m_x = x; }
+
+double PathChain::selection(const PathState& s, size_t i) const {
+  double sum = 0.0, mine = 0.0;
+  for (size_t j = 0; j < m_mutators.size(); ++j) {
+    const double w = m_mutators[j].mutator->suitable(s) ? m_mutators[j].weight : 0.0;
+    sum += w;
+    if (j == i) mine = w;
+  }
+  return sum > 0.0 ? mine / sum : 0.0;
+}
 
 PathStep PathChain::step() {
   PathStep st;
   st.current = {m_x.colour(), m_x.raster};
-  ++m_counters.proposed;
-  BidirChoice rec;
-  const ProposalStatus status = m_mutation->sample(m_x, m_y, rec, m_rng, m_sides);
-  ++m_counters.status[size_t(status)];
+  // Pick a suitable mutation with probability proportional to its weight.
+  double total = 0.0;
+  for (const auto& m : m_mutators) total += m.mutator->suitable(m_x) ? m.weight : 0.0;
+  if (!(total > 0.0)) {
+    ++m_counters.stuck;
+    return st;
+  }
+  double u = m_rng.uniform_double() * total;
+  size_t pick = 0;
+  for (size_t j = 0; j < m_mutators.size(); ++j) {
+    const double w = m_mutators[j].mutator->suitable(m_x) ? m_mutators[j].weight : 0.0;
+    if (w <= 0.0) continue;
+    pick = j;
+    if (u < w) break;
+    u -= w;
+  }
+  const Mutator& mut = *m_mutators[pick].mutator;
+  MutatorCounters& mc = m_counters.mutators[pick];
+  ++mc.proposed;
+  MutationRecord rec;
+  const ProposalStatus status = mut.sample(m_x, m_y, rec, m_rng, m_sides);
+  ++mc.status[size_t(status)];
   if (status != ProposalStatus::ok) return st;
-  const double a = m_mutation->acceptance(m_x, m_y, rec);
-  if (!std::isfinite(a)) {
+  const double sx = selection(m_x, pick), sy = selection(m_y, pick);
+  const double a = std::min(1.0, mut.ratio(m_x, m_y, rec) * sy / sx);
+  if (!std::isfinite(a) || a < 0.0) {
     ++m_counters.invalid;
     return st;
   }
   st.a = a;
+  mc.acceptance_sum += a;
   st.proposed = {m_y.colour(), m_y.raster};
   if (m_rng.uniform_double() < a) {
     std::swap(m_x, m_y);
     st.accepted = true;
-    ++m_counters.accepted;
+    ++mc.accepted;
   }
   return st;
 }

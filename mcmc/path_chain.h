@@ -1,23 +1,33 @@
 // One Metropolis-Hastings chain over path space (Veach 1997, Ch. 11): the state is a full
-// path (path_state.h), each step proposes y with the bidirectional mutation
-// (mut_bidir.h) and accepts it with a(x -> y) = min(1, F(y) T(y -> x) / (F(x) T(x -> y))).
+// path (path_state.h); each step picks one of the mutations suitable for the current path
+// with probability s_x = w_i / sum of the suitable w_j (Mitsuba 0.6's selection), proposes
+// y with it and accepts with
+//   a = min(1, ratio(x, y) * s_y / s_x)   (mutator.h; s_y on y's own suitable set).
 // A failed proposal is a rejection (the current path keeps its weight) and is counted by
-// cause. Expected-value splatting (Veach 1997, Sec. 11.3.3) is the caller's: the step
-// reports the current path and the proposal with a. The chain owns all its memory, and no
-// member refers to another, so chains can live in a std::vector.
+// mutation and cause. Expected-value splatting (Veach 1997, Sec. 11.3.3) is the caller's:
+// the step reports the current path and the proposal with a. The chain owns all its
+// memory and no member refers to another, so chains can live in a std::vector.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
-#include "mcmc/mut_bidir.h"
+#include "mcmc/mutator.h"
 
 namespace dp::mcmc {
 
-struct PathChainCounters {
+struct MutatorCounters {
   int64_t proposed = 0, accepted = 0;
   std::array<int64_t, size_t(ProposalStatus::count)> status{};  // proposals by outcome
-  int64_t invalid = 0;  // proposals whose acceptance was not finite (rejected)
+  double acceptance_sum = 0;                                     // sum of a over the proposals
+  void merge(const MutatorCounters& o);
+};
+
+struct PathChainCounters {
+  std::vector<MutatorCounters> mutators;  // in the order of the chain's mutators
+  int64_t invalid = 0;                    // proposals whose acceptance was not finite (rejected)
+  int64_t stuck = 0;                      // steps at a path no mutation applies to
   void merge(const PathChainCounters& o);
 };
 
@@ -33,16 +43,24 @@ struct PathStep {
   bool accepted = false;
 };
 
+struct WeightedMutator {
+  const Mutator* mutator = nullptr;
+  double weight = 1;
+};
+
 class PathChain {
  public:
-  PathChain(const BidirMutation& mutation, uint64_t seed, uint64_t index);
+  PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index);
   void start(const PathState& x);
   PathStep step();
   const PathState& current() const { return m_x; }
   const PathChainCounters& counters() const { return m_counters; }
 
  private:
-  const BidirMutation* m_mutation;
+  // Selection probability of mutator i on s (0 if it does not apply).
+  double selection(const PathState& s, size_t i) const;
+
+  std::vector<WeightedMutator> m_mutators;
   core::Rng m_rng;
   PathState m_x, m_y;
   PathSides m_sides;

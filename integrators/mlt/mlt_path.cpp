@@ -6,6 +6,8 @@
 #include "core/timer.h"
 #include "integrators/chain_scheduler.h"
 #include "integrators/tile_scheduler.h"
+#include "mcmc/mut_caustic.h"
+#include "mcmc/mut_lens.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_seed.h"
 
@@ -30,7 +32,15 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   mcmc::BidirLengths lengths;
   lengths.k_min = 3;  // depth 1: a light seen directly
   lengths.k_max = options.max_depth + 2;
-  const mcmc::BidirMutation mutation(scene, lengths, settings.path_fault);
+  const mcmc::BidirMutation bidir(scene, lengths, settings.path_fault);
+  const mcmc::LensPerturbation lens(scene);
+  const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
+  std::vector<mcmc::WeightedMutator> mutators;
+  for (const std::string& name : settings.mutators)
+    mutators.push_back({name == "lens" ? static_cast<const mcmc::Mutator*>(&lens)
+                        : name == "caustic" ? static_cast<const mcmc::Mutator*>(&caustic)
+                                            : static_cast<const mcmc::Mutator*>(&bidir),
+                        1.0});
   const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
   std::vector<mcmc::PathChain> chains;
   int64_t seed_retries = 0;
@@ -45,7 +55,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
         if (++tries == 100) throw Error("mlt (mutations=path): no BDPT seed path evaluates; cannot start chain " +
                                         std::to_string(c));
       seed_retries += tries;
-      chains.emplace_back(mutation, options.seed, uint64_t(c));
+      chains.emplace_back(mutators, options.seed, uint64_t(c));
       chains.back().start(x);
     }
   }
@@ -81,11 +91,21 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   mcmc::PathChainCounters sum;
   for (const auto& c : counters) sum.merge(c);  // chain order
   result.stats.add("mlt.mutations", run.total_mutations);
-  result.stats.add("mlt.path.proposed", sum.proposed);
-  result.stats.add("mlt.path.accepted", sum.accepted);
-  for (size_t i = 0; i < sum.status.size(); ++i)
-    result.stats.add(std::string("mlt.path.bidir.") + mcmc::proposal_status_name(mcmc::ProposalStatus(i)),
-                     sum.status[i]);
+  int64_t proposed = 0, accepted = 0;
+  for (size_t i = 0; i < mutators.size(); ++i) {
+    const mcmc::MutatorCounters& mc = sum.mutators[i];
+    const std::string prefix = std::string("mlt.path.") + mutators[i].mutator->name() + ".";
+    result.stats.add(prefix + "proposed", mc.proposed);
+    result.stats.add(prefix + "accepted", mc.accepted);
+    for (size_t k = 0; k < mc.status.size(); ++k)
+      if (k != size_t(mcmc::ProposalStatus::ok))
+        result.stats.add(prefix + "fail." + mcmc::proposal_status_name(mcmc::ProposalStatus(k)), mc.status[k]);
+    result.info[std::string("acceptance_") + mutators[i].mutator->name()] =
+        mc.proposed > 0 ? double(mc.accepted) / double(mc.proposed) : 0.0;
+    proposed += mc.proposed;
+    accepted += mc.accepted;
+  }
+  result.stats.add("mlt.path.stuck", sum.stuck);
   result.stats.add("mlt.path.invalid", sum.invalid);
   result.stats.add("mlt.path.seed_retries", seed_retries);
   result.stats.add("mlt.nan_dropped", seeder.invalid() + sum.invalid);
@@ -95,7 +115,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   result.info["b"] = seeder.b();
   result.info["bootstrap_seconds"] = bootstrap_seconds;
   result.info["chain_seconds"] = run.seconds;
-  result.info["acceptance_rate"] = sum.proposed > 0 ? double(sum.accepted) / double(sum.proposed) : 0.0;
+  result.info["acceptance_rate"] = proposed > 0 ? double(accepted) / double(proposed) : 0.0;
   result.info["chains"] = n_chains;
   result.info["rounds"] = run.rounds;
   result.info["mutations_per_pixel"] = double(run.total_mutations) / double(pixels);

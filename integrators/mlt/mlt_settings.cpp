@@ -1,5 +1,7 @@
 #include "integrators/mlt/mlt_settings.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace dp::integrators {
@@ -20,10 +22,26 @@ MltSettings MltSettings::read(Settings& s) {
       "mutations", "pss", "state space of the chains: pss (primary samples, Kelemen) | path (Veach's path-space mutations)",
       {"pss", "path"});
   m.path_space = mutations == "path";
-  m.mutators = s.get_string("mutators", m.mutators,
-                            "path-space mutators (mutations=path): bidir (Veach's bidirectional mutation); lens, caustic, "
-                            "multichain and manifold are not built yet",
-                            {"bidir"});
+  const std::string mutators = s.get_string(
+      "mutators", "veach",
+      "path-space mutations (mutations=path): veach (= bidir,lens,caustic) or a comma list of bidir (Veach's "
+      "bidirectional mutation, needed: the only one that changes lengths), lens, caustic; multichain and manifold are "
+      "not built yet");
+  if (mutators != "veach") {
+    m.mutators.clear();
+    size_t at = 0;
+    while (at <= mutators.size()) {
+      const size_t end = std::min(mutators.find(',', at), mutators.size());
+      const std::string name = mutators.substr(at, end - at);
+      if (name != "bidir" && name != "lens" && name != "caustic")
+        throw ValueError("setting 'mutators': unknown mutation '" + name + "' (bidir, lens, caustic or veach)", "--set");
+      m.mutators.push_back(name);
+      at = end + 1;
+    }
+    if (std::find(m.mutators.begin(), m.mutators.end(), "bidir") == m.mutators.end())
+      throw ValueError("setting 'mutators' must include bidir: the perturbations never change a path's length, so "
+                       "without it the chain is not ergodic", "--set");
+  }
   if (!(m.large_step_prob > 0.0 && m.large_step_prob <= 1.0))
     throw ValueError("setting 'large_step_prob' must be in (0, 1]", "--set");
   if (m.bootstrap < 1) throw ValueError("setting 'bootstrap' must be >= 1", "--set");

@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "integrators/settings.h"
 #include "mcmc/chain.h"
 #include "mcmc/mut_bidir.h"
+#include "mcmc/mut_caustic.h"
 
 namespace dp::integrators {
 
@@ -18,10 +20,10 @@ struct MltSettings {
   int chains = 0;                // independent chains; 0 = 4 per thread
   int rr_depth = 5;              // Russian roulette after this many segments (as PT)
   bool nee = true;               // next-event estimation with MIS inside each path (as PT)
-  // Path-space chains (docs/memlt_plan.md): mutations=path, the mutator set, Veach's
-  // bidirectional mutation only so far.
+  // Path-space chains (docs/memlt_plan.md): mutations=path and the mutation set
+  // (bidir, lens, caustic; "veach" = all three).
   bool path_space = false;
-  std::string mutators = "bidir";
+  std::vector<std::string> mutators{"bidir", "lens", "caustic"};
   // Not a --set key: a deliberate defect of the bidirectional mutation (tests).
   mcmc::BidirMutationFault path_fault = mcmc::BidirMutationFault::none;
   // Not a --set key: tests replace it by an asymmetric step the render must be rejected for.
