@@ -89,7 +89,9 @@ ProposalStatus BidirMutation::sample_choice(const PathState& x, PathState& y, Bi
     }
   }
   const int strategy = L + s;
-  if (!evaluate_path(m_scene, y, sides) || !(y.inv_c[size_t(strategy)] > 0.0)) return ProposalStatus::zero;
+  const bool valid = evaluate_path(m_scene, y, sides);
+  if (y.nonfinite) return ProposalStatus::nonfinite;
+  if (!valid || !(y.inv_c[size_t(strategy)] > 0.0)) return ProposalStatus::zero;
   if (strategy >= 1) {
     pathspace::MisConfig unweighted;
     unweighted.unweighted = true;

@@ -13,6 +13,8 @@ const char* proposal_status_name(ProposalStatus s) {
     case ProposalStatus::zero: return "zero";
     case ProposalStatus::off_image: return "off_image";
     case ProposalStatus::configuration: return "configuration";
+    case ProposalStatus::chain_walk: return "chain_walk";
+    case ProposalStatus::nonfinite: return "nonfinite";
     case ProposalStatus::count: break;
   }
   return "?";

@@ -27,6 +27,8 @@ enum class ProposalStatus : uint8_t {
   zero,              // the proposal contributes nothing (or nothing finite)
   off_image,         // lens: the perturbed raster position left the image
   configuration,     // a perturbation changed the path's configuration (a Dirac lobe lost, a smooth vertex became Dirac)
+  chain_walk,        // manifold: the specular chain's walk failed or was not reversible
+  nonfinite,         // the proposal's value is NaN or infinite (dropped and counted)
   count
 };
 const char* proposal_status_name(ProposalStatus s);
@@ -36,10 +38,17 @@ struct MutationRecord {
   BidirChoice bidir;  // bidirectional mutation: the discrete choice
   int l = 0;          // perturbations: the kept vertex the re-traced part starts after / ends at
   double theta = 0;   // caustic: the angle between the old and the new direction at x_l
+  // manifold: the perturbed vertex a, the re-traced end b, the pinned end c, the direction
+  // (+1 toward the camera), the strategy whose densities the ratio uses, the cosine of the
+  // angle between the old and new direction at a, and the walked chain's Jacobian ratio
+  // [G(y_b, c)/|cos y_b|] / [G(x_b, c)/|cos x_b|] (1 without a chain).
+  int a = 0, b = 0, c = 0, step = 0, strategy = 0;
+  double cos_turn = 1, jacobian = 1;
   // The record of the move from the proposal back to the source.
   MutationRecord reverse() const {
     MutationRecord r = *this;
     r.bidir = bidir.reverse();
+    r.jacobian = 1.0 / jacobian;
     return r;
   }
 };

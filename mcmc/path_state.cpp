@@ -84,6 +84,7 @@ bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides
   state.inv_c.assign(size_t(std::max(K + 1, 0)), 0.0);
   state.ref = -1;
   state.c_ref = Rgb::Zero();
+  state.nonfinite = false;
   if (K < 1 || state.v[0].kind != BidirKind::light || state.v[size_t(K)].kind != BidirKind::camera) return false;
   const scene::PerspectiveCamera& cam = scene.camera();
   const BidirVertex& eye = state.v[size_t(K - 1)];
@@ -103,7 +104,11 @@ bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides
     pathspace::Connection c;
     if (!pathspace::connect(scene, sides.light.data(), s, sides.camera.data(), t, unweighted, c, false)) continue;
     const double lum = luminance(c.value);
-    if (!(lum > 0.0) || !std::isfinite(lum) || !is_finite(c.value)) continue;
+    if (!std::isfinite(lum) || !is_finite(c.value)) {
+      state.nonfinite = true;
+      return false;
+    }
+    if (!(lum > 0.0)) continue;
     state.inv_c[size_t(s)] = 1.0 / lum;
     if (state.ref < 0) {
       state.ref = s;

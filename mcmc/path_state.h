@@ -32,6 +32,7 @@ struct PathState {
   int ref = -1;               // the first valid strategy
   Rgb c_ref = Rgb::Zero();    // C_ref (what BDPT's strategy `ref` adds for this path)
   Vec2 raster{0, 0};          // where the eye edge x_{K-1} x_K meets the image
+  bool nonfinite = false;     // a strategy's value was NaN or infinite (the path is refused)
 
   int depth() const { return int(v.size()) - 1; }
   Rgb colour() const { return c_ref / luminance(c_ref); }  // F / lum F, the splat's colour
@@ -46,7 +47,8 @@ struct PathSides {
 
 // Fills inv_c, ref, c_ref and raster of `state` from its vertices (state.v, with `delta`,
 // `lobe` and `u_lobe` of Dirac vertices set). False if no strategy gives a finite
-// non-zero contribution or the eye edge misses the image.
+// non-zero contribution, the eye edge misses the image, or a value is not finite
+// (`nonfinite`: a NaN from a BSDF or light must never reach a chain).
 bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides);
 
 // The full path of BDPT strategy (s, t) of the given subpaths (pathspace/bidir_subpath.h):

@@ -11,7 +11,7 @@ namespace dp::integrators {
 
 RenderResult MltIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
   if (m_settings.path_space) {
-    RenderResult result = render_mlt_path(scene, options, m_settings);
+    RenderResult result = render_mlt_path(scene, options, m_settings, m_name);
     result.info["settings"] = m_json;
     return result;
   }
@@ -47,6 +47,14 @@ RenderResult MltIntegrator::render(const scene::Scene& scene, const RenderOption
   result.partial = driver.result().partial;
   result.info["settings"] = m_json;
   return result;
+}
+
+std::unique_ptr<Integrator> make_memlt(Settings& settings) {
+  MltSettings defaults;
+  defaults.path_space = true;
+  defaults.mutators_preset = "memlt";
+  const MltSettings m = MltSettings::read(settings, defaults);
+  return std::make_unique<MltIntegrator>(m, settings.to_json(), "memlt");
 }
 
 }  // namespace dp::integrators

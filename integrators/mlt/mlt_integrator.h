@@ -18,13 +18,20 @@ class MltIntegrator final : public Integrator {
  public:
   explicit MltIntegrator(Settings& settings) : m_settings(MltSettings::read(settings)), m_json(settings.to_json()) {}
   // Settings given in code (tests: members that are not --set keys).
-  MltIntegrator(const MltSettings& settings, core::Json json) : m_settings(settings), m_json(std::move(json)) {}
-  std::string name() const override { return "mlt"; }
+  MltIntegrator(const MltSettings& settings, core::Json json, std::string name = "mlt")
+      : m_settings(settings), m_json(std::move(json)), m_name(std::move(name)) {}
+  std::string name() const override { return m_name; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
 
  private:
   MltSettings m_settings;
   core::Json m_json;
+  std::string m_name = "mlt";
 };
+
+// `--integrator memlt`: manifold exploration Metropolis light transport (Jakob & Marschner
+// 2012): `mlt` with mutations=path and the mutation set memlt (bidirectional, lens,
+// caustic and manifold); counters "memlt.*".
+std::unique_ptr<Integrator> make_memlt(Settings& settings);
 
 }  // namespace dp::integrators

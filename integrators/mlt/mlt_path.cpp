@@ -8,12 +8,14 @@
 #include "integrators/tile_scheduler.h"
 #include "mcmc/mut_caustic.h"
 #include "mcmc/mut_lens.h"
+#include "mcmc/mut_manifold.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_seed.h"
 
 namespace dp::integrators {
 
-RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings) {
+RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
+                             const std::string& name) {
   core::Timer timer;
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();
@@ -35,11 +37,16 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const mcmc::BidirMutation bidir(scene, lengths, settings.path_fault);
   const mcmc::LensPerturbation lens(scene);
   const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
+  mcmc::ManifoldSettings ms;
+  ms.lambda = settings.manifold_lambda;
+  ms.sensor_prob = settings.manifold_sensor_prob;
+  const mcmc::ManifoldPerturbation manifold(scene, ms);
   std::vector<mcmc::WeightedMutator> mutators;
-  for (const std::string& name : settings.mutators)
-    mutators.push_back({name == "lens" ? static_cast<const mcmc::Mutator*>(&lens)
-                        : name == "caustic" ? static_cast<const mcmc::Mutator*>(&caustic)
-                                            : static_cast<const mcmc::Mutator*>(&bidir),
+  for (const std::string& m : settings.mutators)
+    mutators.push_back({m == "lens"       ? static_cast<const mcmc::Mutator*>(&lens)
+                        : m == "caustic"  ? static_cast<const mcmc::Mutator*>(&caustic)
+                        : m == "manifold" ? static_cast<const mcmc::Mutator*>(&manifold)
+                                             : static_cast<const mcmc::Mutator*>(&bidir),
                         1.0});
   const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
   std::vector<mcmc::PathChain> chains;
@@ -52,7 +59,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
       core::Rng pick(options.seed, core::mix64(0x57A7'0000'0000ull + uint64_t(c)));
       int tries = 0;
       while (!seeder.select(pick.uniform_double(), x, sides))
-        if (++tries == 100) throw Error("mlt (mutations=path): no BDPT seed path evaluates; cannot start chain " +
+        if (++tries == 100) throw Error(name + " (mutations=path): no BDPT seed path evaluates; cannot start chain " +
                                         std::to_string(c));
       seed_retries += tries;
       chains.emplace_back(mutators, options.seed, uint64_t(c));
@@ -70,7 +77,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     const int px = std::clamp(int(p.raster.x()), 0, w - 1), py = std::clamp(int(p.raster.y()), 0, h - 1);
     out.add(0, int64_t(py) * w + px, p.colour.cast<double>() * weight);
   };
-  const ChainRunResult run = run_chains(sc, options, "mlt", [&](int c, int64_t n, SplatList& out, int) {
+  const ChainRunResult run = run_chains(sc, options, name, [&](int c, int64_t n, SplatList& out, int) {
     mcmc::PathChain& chain = chains[size_t(c)];
     for (int64_t m = 0; m < n; ++m) {
       const mcmc::PathStep st = chain.step();
@@ -90,11 +97,11 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
 
   mcmc::PathChainCounters sum;
   for (const auto& c : counters) sum.merge(c);  // chain order
-  result.stats.add("mlt.mutations", run.total_mutations);
+  result.stats.add(name + ".mutations", run.total_mutations);
   int64_t proposed = 0, accepted = 0;
   for (size_t i = 0; i < mutators.size(); ++i) {
     const mcmc::MutatorCounters& mc = sum.mutators[i];
-    const std::string prefix = std::string("mlt.path.") + mutators[i].mutator->name() + ".";
+    const std::string prefix = name + ".path." + mutators[i].mutator->name() + ".";
     result.stats.add(prefix + "proposed", mc.proposed);
     result.stats.add(prefix + "accepted", mc.accepted);
     for (size_t k = 0; k < mc.status.size(); ++k)
@@ -105,11 +112,13 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     proposed += mc.proposed;
     accepted += mc.accepted;
   }
-  result.stats.add("mlt.path.stuck", sum.stuck);
-  result.stats.add("mlt.path.invalid", sum.invalid);
-  result.stats.add("mlt.path.seed_retries", seed_retries);
-  result.stats.add("mlt.nan_dropped", seeder.invalid() + sum.invalid);
-  result.stats.add("mlt.bootstrap_samples", seeder.samples());
+  result.stats.add(name + ".path.stuck", sum.stuck);
+  result.stats.add(name + ".path.invalid", sum.invalid);
+  result.stats.add(name + ".path.seed_retries", seed_retries);
+  int64_t nonfinite = 0;
+  for (const auto& mc : sum.mutators) nonfinite += mc.status[size_t(mcmc::ProposalStatus::nonfinite)];
+  result.stats.add(name + ".nan_dropped", seeder.invalid() + sum.invalid + nonfinite);
+  result.stats.add(name + ".bootstrap_samples", seeder.samples());
   result.min_spp = result.max_spp = run.total_mutations / pixels;
   result.info["state_space"] = "path";
   result.info["b"] = seeder.b();

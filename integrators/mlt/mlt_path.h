@@ -14,6 +14,8 @@
 
 namespace dp::integrators {
 
-RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings);
+// Counters and the progress label use `name` ("mlt" or "memlt").
+RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
+                             const std::string& name);
 
 }  // namespace dp::integrators

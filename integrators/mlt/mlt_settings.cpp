@@ -6,8 +6,10 @@
 
 namespace dp::integrators {
 
-MltSettings MltSettings::read(Settings& s) {
-  MltSettings m;
+MltSettings MltSettings::read(Settings& s) { return read(s, MltSettings{}); }
+
+MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
+  MltSettings m = defaults;
   m.large_step_prob = s.get_double("large_step_prob", m.large_step_prob,
                                    "probability that a mutation is a large step (fresh uniform primary samples)");
   m.bootstrap = s.get_int("bootstrap", int(m.bootstrap),
@@ -19,22 +21,26 @@ MltSettings MltSettings::read(Settings& s) {
   m.rr_depth = s.get_int("rr_depth", m.rr_depth, "Russian roulette only after this many path segments");
   m.nee = s.get_bool("nee", m.nee, "next-event estimation with power-heuristic MIS inside each path");
   const std::string mutations = s.get_string(
-      "mutations", "pss", "state space of the chains: pss (primary samples, Kelemen) | path (Veach's path-space mutations)",
+      "mutations", m.path_space ? "path" : "pss", "state space of the chains: pss (primary samples, Kelemen) | path (Veach's path-space mutations)",
       {"pss", "path"});
   m.path_space = mutations == "path";
   const std::string mutators = s.get_string(
-      "mutators", "veach",
-      "path-space mutations (mutations=path): veach (= bidir,lens,caustic) or a comma list of bidir (Veach's "
-      "bidirectional mutation, needed: the only one that changes lengths), lens, caustic; multichain and manifold are "
-      "not built yet");
-  if (mutators != "veach") {
-    m.mutators.clear();
+      "mutators", m.mutators_preset,
+      "path-space mutations (mutations=path): veach (= bidir,lens,caustic), memlt (= bidir,lens,caustic,manifold) or a "
+      "comma list of bidir (Veach's bidirectional mutation, needed: the only one that changes lengths), lens, caustic, "
+      "manifold (Jakob & Marschner's manifold perturbation); multichain is not built yet");
+  m.mutators.clear();
+  if (mutators == "veach" || mutators == "memlt") {
+    m.mutators = {"bidir", "lens", "caustic"};
+    if (mutators == "memlt") m.mutators.push_back("manifold");
+  } else {
     size_t at = 0;
     while (at <= mutators.size()) {
       const size_t end = std::min(mutators.find(',', at), mutators.size());
       const std::string name = mutators.substr(at, end - at);
-      if (name != "bidir" && name != "lens" && name != "caustic")
-        throw ValueError("setting 'mutators': unknown mutation '" + name + "' (bidir, lens, caustic or veach)", "--set");
+      if (name != "bidir" && name != "lens" && name != "caustic" && name != "manifold")
+        throw ValueError("setting 'mutators': unknown mutation '" + name + "' (bidir, lens, caustic, manifold, veach or memlt)",
+                         "--set");
       m.mutators.push_back(name);
       at = end + 1;
     }
@@ -42,6 +48,13 @@ MltSettings MltSettings::read(Settings& s) {
       throw ValueError("setting 'mutators' must include bidir: the perturbations never change a path's length, so "
                        "without it the chain is not ergodic", "--set");
   }
+  m.manifold_lambda = s.get_double("manifold_lambda", m.manifold_lambda,
+                                   "manifold perturbation: vMF peak density lambda^2 max(1/(4 pi), p) (Jakob & Marschner 2012)");
+  m.manifold_sensor_prob = s.get_double("manifold_sensor_prob", m.manifold_sensor_prob,
+                                        "manifold perturbation: probability of starting at the pinhole");
+  if (!(m.manifold_lambda > 0.0)) throw ValueError("setting 'manifold_lambda' must be > 0", "--set");
+  if (!(m.manifold_sensor_prob >= 0.0 && m.manifold_sensor_prob <= 1.0))
+    throw ValueError("setting 'manifold_sensor_prob' must be in [0, 1]", "--set");
   if (!(m.large_step_prob > 0.0 && m.large_step_prob <= 1.0))
     throw ValueError("setting 'large_step_prob' must be in (0, 1]", "--set");
   if (m.bootstrap < 1) throw ValueError("setting 'bootstrap' must be >= 1", "--set");

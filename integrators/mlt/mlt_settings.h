@@ -23,13 +23,18 @@ struct MltSettings {
   // Path-space chains (docs/memlt_plan.md): mutations=path and the mutation set
   // (bidir, lens, caustic; "veach" = all three).
   bool path_space = false;
+  std::string mutators_preset = "veach";  // the default of `mutators` (memlt: "memlt")
   std::vector<std::string> mutators{"bidir", "lens", "caustic"};
+  double manifold_lambda = 50;       // vMF peak factor of the manifold perturbation
+  double manifold_sensor_prob = 0.25;
   // Not a --set key: a deliberate defect of the bidirectional mutation (tests).
   mcmc::BidirMutationFault path_fault = mcmc::BidirMutationFault::none;
   // Not a --set key: tests replace it by an asymmetric step the render must be rejected for.
   mcmc::SmallStep small_step = mcmc::kelemen_small_step;
 
+  // `defaults`: the integrator's own defaults (memlt: path space with the memlt set).
   static MltSettings read(Settings& s);
+  static MltSettings read(Settings& s, const MltSettings& defaults);
 };
 
 }  // namespace dp::integrators

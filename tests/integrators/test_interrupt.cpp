@@ -22,7 +22,7 @@ constexpr int kRes = 32;  // 4 tiles
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, double seconds,
                                  const std::atomic<bool>* stop) {
   integrators::Settings settings;
-  if (name == "mlt" || name == "gdmlt") settings.set("bootstrap", "2000");  // chains start at once
+  if (name == "mlt" || name == "gdmlt" || name == "memlt") settings.set("bootstrap", "2000");  // chains start at once
   auto in = integrators::make_integrator(name, settings);
   integrators::RenderOptions opt;
   opt.spp = spp;

@@ -65,7 +65,7 @@ std::shared_ptr<test::NanBsdf> nan_sphere(double p) {
 
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, int max_depth) {
   integrators::Settings settings;
-  if (name == "mlt" || name == "gdmlt") settings.set("bootstrap", "5000");
+  if (name == "mlt" || name == "gdmlt" || name == "memlt") settings.set("bootstrap", "5000");
   auto in = integrators::make_integrator(name, settings);
   integrators::RenderOptions opt;
   opt.spp = spp;

@@ -17,7 +17,7 @@ using namespace dp;
 namespace {
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int threads, uint64_t seed) {
   integrators::Settings settings;
-  if (name == "mlt" || name == "gdmlt") {
+  if (name == "mlt" || name == "gdmlt" || name == "memlt") {
     settings.set("chains", "5");
     settings.set("bootstrap", "5000");
   }

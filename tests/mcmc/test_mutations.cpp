@@ -15,6 +15,7 @@
 #include "mcmc/mut_bidir.h"
 #include "mcmc/mut_caustic.h"
 #include "mcmc/mut_lens.h"
+#include "mcmc/mut_manifold.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_seed.h"
 #include "scene/bsdfs.h"
@@ -36,7 +37,8 @@ std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fau
   const mcmc::BidirMutation bidir(scene, lengths, fault);
   const mcmc::LensPerturbation lens(scene);
   const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
-  const std::vector<const mcmc::Mutator*> all{&bidir, &lens, &caustic};
+  const mcmc::ManifoldPerturbation manifold(scene);
+  const std::vector<const mcmc::Mutator*> all{&bidir, &lens, &caustic, &manifold};
   mcmc::PathSeedOptions so;
   so.max_depth = 6;
   so.samples = 2000;
@@ -45,7 +47,7 @@ std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fau
   mcmc::PathState x, y;
   mcmc::PathSides sides;
   REQUIRE(seeder.select(0.37, x, sides));
-  mcmc::PathChain chain({{&bidir, 1.0}, {&lens, 1.0}, {&caustic, 1.0}}, 5, 0);
+  mcmc::PathChain chain({{&bidir, 1.0}, {&lens, 1.0}, {&caustic, 1.0}, {&manifold, 1.0}}, 5, 0);
   chain.start(x);
   core::Rng rng(9, 1);
   std::vector<Tally> out(all.size());
@@ -69,7 +71,7 @@ std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fau
   return out;
 }
 
-const char* kNames[] = {"bidir", "lens", "caustic"};
+const char* kNames[] = {"bidir", "lens", "caustic", "manifold"};
 
 }  // namespace
 
@@ -92,6 +94,7 @@ TEST_CASE("path mutations: ratio(x -> y) * ratio(y -> x) = 1 for every mutation"
     if (k == 0) {
       CHECK(t[1].pairs > 300);
       CHECK(t[2].pairs > 100);
+      CHECK(t[3].pairs > 300);
     }
   }
   // The reverse pmf evaluated on x breaks the symmetry wherever x's and y's admissible
