@@ -56,11 +56,13 @@ PathStep PathChain::step() {
     u -= w;
   }
   const Mutator& mut = *m_mutators[pick].mutator;
+  st.mutator = int(pick);
   MutatorCounters& mc = m_counters.mutators[pick];
   ++mc.proposed;
   MutationRecord rec;
   const ProposalStatus status = mut.sample(m_x, m_y, rec, m_rng, m_sides);
   ++mc.status[size_t(status)];
+  st.status = status;
   if (status != ProposalStatus::ok) return st;
   const double sx = selection(m_x, pick), sy = selection(m_y, pick);
   const double a = std::min(1.0, mut.ratio(m_x, m_y, rec) * sy / sx);

@@ -41,6 +41,8 @@ struct PathStep {
   PathSplat current, proposed;
   double a = 0;  // 0 when no proposal was made
   bool accepted = false;
+  int mutator = -1;  // the mutation tried (index into the chain's list; -1: none applied)
+  ProposalStatus status = ProposalStatus::ok;
 };
 
 struct WeightedMutator {

@@ -10,9 +10,63 @@
 #include "mcmc/mut_lens.h"
 #include "mcmc/mut_manifold.h"
 #include "mcmc/path_chain.h"
+#include "mcmc/path_json.h"
 #include "mcmc/path_seed.h"
 
 namespace dp::integrators {
+
+namespace {
+
+// The start path of chain c: a BDPT path chosen with probability proportional to lum(w C)
+// (path_seed.h); returns the retries needed.
+int start_path(const mcmc::PathSeeder& seeder, uint64_t seed, int c, const std::string& name, mcmc::PathState& x) {
+  core::Rng pick(seed, core::mix64(0x57A7'0000'0000ull + uint64_t(c)));
+  mcmc::PathSides sides;
+  int tries = 0;
+  while (!seeder.select(pick.uniform_double(), x, sides))
+    if (++tries == 100)
+      throw Error(name + " (mutations=path): no BDPT seed path evaluates; cannot start chain " + std::to_string(c));
+  return tries;
+}
+
+// replay=CHAIN:STEP: the chain's path after STEP steps and the last step, as JSON.
+RenderResult replay_chain(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
+                          const std::string& name, const mcmc::PathSeeder& seeder,
+                          const std::vector<mcmc::WeightedMutator>& mutators, const core::Timer& timer) {
+  RenderResult result;
+  result.layers.push_back({"", core::Image(scene.camera().width(), scene.camera().height())});
+  core::Json j = core::Json::object();
+  j["chain"] = settings.replay_chain;
+  j["step"] = double(settings.replay_step);
+  if (!(seeder.b() > 0.0)) {
+    j["error"] = "no light reaches the camera (b = 0): no chain starts";
+    result.info["replay"] = j;
+    return result;
+  }
+  mcmc::PathState x;
+  start_path(seeder, options.seed, settings.replay_chain, name, x);
+  mcmc::PathChain chain(mutators, options.seed, uint64_t(settings.replay_chain));
+  chain.start(x);
+  j["start"] = mcmc::path_state_json(chain.current());
+  mcmc::PathStep last;
+  for (int64_t i = 0; i < settings.replay_step; ++i) last = chain.step();
+  j["state"] = mcmc::path_state_json(chain.current());
+  if (settings.replay_step > 0) {
+    core::Json l = core::Json::object();
+    l["mutation"] = last.mutator >= 0 ? mutators[size_t(last.mutator)].mutator->name() : "none";
+    l["outcome"] = mcmc::proposal_status_name(last.status);
+    l["a"] = last.a;
+    l["accepted"] = last.accepted;
+    j["last_step"] = l;
+  }
+  j["b"] = seeder.b();
+  result.info["replay"] = j;
+  result.info["state_space"] = "path";
+  result.wall_seconds = timer.seconds();
+  return result;
+}
+
+}  // namespace
 
 RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
                              const std::string& name) {
@@ -53,19 +107,14 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   int64_t seed_retries = 0;
   {
     mcmc::PathState x;
-    mcmc::PathSides sides;
     for (int c = 0; c < n_chains; ++c) {
-      // Start path: a BDPT path chosen with probability proportional to lum(w C) (path_seed.h).
-      core::Rng pick(options.seed, core::mix64(0x57A7'0000'0000ull + uint64_t(c)));
-      int tries = 0;
-      while (!seeder.select(pick.uniform_double(), x, sides))
-        if (++tries == 100) throw Error(name + " (mutations=path): no BDPT seed path evaluates; cannot start chain " +
-                                        std::to_string(c));
-      seed_retries += tries;
+      seed_retries += start_path(seeder, options.seed, c, name, x);
       chains.emplace_back(mutators, options.seed, uint64_t(c));
       chains.back().start(x);
     }
   }
+
+  if (settings.replay_chain >= 0) return replay_chain(scene, options, settings, name, seeder, mutators, timer);
 
   ChainSchedule sc;
   sc.chains = n_chains;

@@ -1,6 +1,7 @@
 #include "integrators/mlt/mlt_settings.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "core/error.h"
 
@@ -52,6 +53,20 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
                                    "manifold perturbation: vMF peak density lambda^2 max(1/(4 pi), p) (Jakob & Marschner 2012)");
   m.manifold_sensor_prob = s.get_double("manifold_sensor_prob", m.manifold_sensor_prob,
                                         "manifold perturbation: probability of starting at the pinhole");
+  const std::string replay = s.get_string(
+      "replay", "",
+      "mutations=path: CHAIN:STEP re-runs one chain to that step (no image) and writes its path, strategies and last "
+      "proposal into the JSON sidecar (info.replay)");
+  if (!replay.empty()) {
+    long long chain = -1, step = -1;
+    char tail = 0;
+    if (std::sscanf(replay.c_str(), "%lld:%lld%c", &chain, &step, &tail) != 2 || chain < 0 || step < 0 ||
+        chain > 1000000)
+      throw ValueError("setting 'replay' must be CHAIN:STEP with non-negative integers, got '" + replay + "'", "--set");
+    if (!m.path_space) throw ValueError("setting 'replay' needs mutations=path", "--set");
+    m.replay_chain = int(chain);
+    m.replay_step = step;
+  }
   if (!(m.manifold_lambda > 0.0)) throw ValueError("setting 'manifold_lambda' must be > 0", "--set");
   if (!(m.manifold_sensor_prob >= 0.0 && m.manifold_sensor_prob <= 1.0))
     throw ValueError("setting 'manifold_sensor_prob' must be in [0, 1]", "--set");
