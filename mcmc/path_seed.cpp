@@ -39,7 +39,7 @@ void bdpt_sample(const scene::Scene& scene, const PathSeedOptions& opt, int64_t 
   const int nl = int(sp.light.size()), nc = int(sp.camera.size());
   for (int t = 1; t <= nc; ++t)
     for (int s = 0; s <= nl; ++s) {
-      if (s + t < 2 || s + t - 1 > opt.max_depth) continue;
+      if (s + t < 2 || s + t - 1 > opt.max_depth || s + t - 1 < opt.min_depth) continue;
       pathspace::Connection c;
       if (!pathspace::connect(scene, sp.light.data(), s, sp.camera.data(), t, mis, c)) continue;
       visit(s, t, double(luminance(c.value)) * double(c.weight), c.value);

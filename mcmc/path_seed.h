@@ -5,7 +5,7 @@
 //   b = mean over samples of sum_st lum(w_st C_st) = integral of lum F (the mean pixel
 //       luminance in McmcDriver's units: pixel = b W H / mutations * splats),
 // and a start path is the (s, t) path of one sample chosen with probability proportional
-// to lum(w_st C_st). Its density is sum_st p_st w_st lum C_st / b' = lum F / b' whatever
+// to lum(w_st C_st) (strategies of depth min_depth .. max_depth only). Its density is sum_st p_st w_st lum C_st / b' = lum F / b' whatever
 // the MIS weights (sampling-importance-resampling: no burn-in). Sample i uses its own
 // random stream (seed, i), so b and every start depend on the seed only, not on the
 // thread count, and a chosen sample is rebuilt by re-running its stream.
@@ -20,6 +20,7 @@ namespace dp::mcmc {
 
 struct PathSeedOptions {
   int max_depth = 8;  // paths of at most this many segments
+  int min_depth = 1;  // and at least this many (3: direct light rendered separately)
   int rr_depth = 5;   // BDPT's Russian roulette (unbiased: b and the start law are unaffected)
   int64_t samples = 100000;
   uint64_t seed = 0;

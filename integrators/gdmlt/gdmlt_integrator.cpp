@@ -8,7 +8,7 @@
 #include "gradients/ao_map.h"
 #include "gradients/shift_factory.h"
 #include "gradients/symmetric_gradient.h"
-#include "integrators/gdmlt/direct_pass.h"
+#include "integrators/direct_pass.h"
 #include "integrators/gradient_output.h"
 #include "integrators/mcmc_driver.h"
 #include "integrators/tile_scheduler.h"
@@ -50,7 +50,10 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   // pixel now and, after every round of the chains (about one mutation per pixel), as
   // many as the rounds so far: direct spp tracks mutations per pixel, and an interrupted
   // render has both parts.
-  DirectPass direct(scene, m_settings, options);
+  PathSettings direct_settings;
+  direct_settings.rr_depth = m_settings.rr_depth;
+  direct_settings.nee = m_settings.nee;
+  DirectPass direct(scene, direct_settings, options, "gdmlt direct");
   direct.render(m_settings.direct_spp > 0 ? m_settings.direct_spp : 1);
 
   // The pair kernel: the 4-neighbour forward differences, or the structure-adaptive pairs

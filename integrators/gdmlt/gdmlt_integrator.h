@@ -1,7 +1,7 @@
 // `--integrator gdmlt`: gradient-domain Metropolis light transport on the extended path
 // space (Manzi et al. 2014, Sec. 4; Lehtinen et al. 2013). Scheduling:
 //  1. direct light: the reference path tracer restricted to paths of at most 2 segments
-//     (direct_pass.h), interleaved with the chains' rounds, added after reconstruction;
+//     (integrators/direct_pass.h), interleaved with the chains' rounds, added after reconstruction;
 //  2. bootstrap of the extended-path-space target (mcmc/gradient_target.h): b and the
 //     chains' start states;
 //  3. `chains` primary-sample-space chains in rounds (chain_scheduler.h), the neighbour

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "integrators/chain_scheduler.h"
+#include "integrators/direct_pass.h"
 #include "integrators/tile_scheduler.h"
 #include "mcmc/mut_caustic.h"
 #include "mcmc/mut_lens.h"
@@ -82,11 +83,14 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   so.samples = settings.bootstrap;
   so.seed = options.seed;
   so.threads = threads;
+  // Direct light (<= 2 segments) by the path tracer, the chains the rest (Mitsuba 0.6).
+  const bool direct = settings.direct_spp > 0 && settings.replay_chain < 0;
+  so.min_depth = direct ? 3 : 1;
   const mcmc::PathSeeder seeder(scene, so);
   const double bootstrap_seconds = timer.seconds();
 
   mcmc::BidirLengths lengths;
-  lengths.k_min = 3;  // depth 1: a light seen directly
+  lengths.k_min = so.min_depth + 2;  // extended lengths: depth + 2
   lengths.k_max = options.max_depth + 2;
   const mcmc::BidirMutation bidir(scene, lengths, settings.path_fault);
   const mcmc::LensPerturbation lens(scene);
@@ -116,6 +120,14 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
 
   if (settings.replay_chain >= 0) return replay_chain(scene, options, settings, name, seeder, mutators, timer);
 
+  std::unique_ptr<DirectPass> direct_pass;
+  if (direct) {
+    PathSettings ps;
+    ps.rr_depth = settings.rr_depth;
+    direct_pass = std::make_unique<DirectPass>(scene, ps, options, name + " direct");
+    direct_pass->render(settings.direct_spp);
+  }
+
   ChainSchedule sc;
   sc.chains = n_chains;
   sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
@@ -142,6 +154,11 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   core::Image img(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) img(x, y) = (run.sums[0][size_t(y) * size_t(w) + size_t(x)] * scale).cast<float>();
+  if (direct_pass) {
+    const core::Image d = direct_pass->image();
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) img(x, y) += d(x, y);
+  }
   result.layers.push_back({"", std::move(img)});
 
   mcmc::PathChainCounters sum;
@@ -166,7 +183,9 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   result.stats.add(name + ".path.seed_retries", seed_retries);
   int64_t nonfinite = 0;
   for (const auto& mc : sum.mutators) nonfinite += mc.status[size_t(mcmc::ProposalStatus::nonfinite)];
-  result.stats.add(name + ".nan_dropped", seeder.invalid() + sum.invalid + nonfinite);
+  result.stats.add(name + ".nan_dropped",
+                   seeder.invalid() + sum.invalid + nonfinite + (direct_pass ? direct_pass->nan_dropped() : 0));
+  result.stats.add(name + ".direct_spp", direct_pass ? direct_pass->spp_done() : 0);
   result.stats.add(name + ".bootstrap_samples", seeder.samples());
   result.min_spp = result.max_spp = run.total_mutations / pixels;
   result.info["state_space"] = "path";
@@ -178,7 +197,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   result.info["rounds"] = run.rounds;
   result.info["mutations_per_pixel"] = double(run.total_mutations) / double(pixels);
   result.wall_seconds = timer.seconds();
-  result.partial = run.partial;
+  result.partial = run.partial || (direct_pass && direct_pass->partial());
   return result;
 }
 

@@ -53,6 +53,11 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
                                    "manifold perturbation: vMF peak density lambda^2 max(1/(4 pi), p) (Jakob & Marschner 2012)");
   m.manifold_sensor_prob = s.get_double("manifold_sensor_prob", m.manifold_sensor_prob,
                                         "manifold perturbation: probability of starting at the pinhole");
+  m.direct_spp = s.get_int("direct_spp", m.direct_spp,
+                           "mutations=path: paths of <= 2 segments (emitters seen directly, direct lighting) rendered by "
+                           "the path tracer at this many samples per pixel and left out of the chains (Mitsuba's "
+                           "directSamples); 0: the chains render them too");
+  if (m.direct_spp < 0) throw ValueError("setting 'direct_spp' must be >= 0", "--set");
   const std::string replay = s.get_string(
       "replay", "",
       "mutations=path: CHAIN:STEP re-runs one chain to that step (no image) and writes its path, strategies and last "

@@ -1,4 +1,4 @@
-#include "integrators/gdmlt/direct_pass.h"
+#include "integrators/direct_pass.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,19 +7,12 @@
 
 namespace dp::integrators {
 
-namespace {
-PathSettings direct_settings(const GdmltSettings& s) {
-  PathSettings ps;
-  ps.rr_depth = s.rr_depth;
-  ps.nee = s.nee;
-  return ps;
-}
-}  // namespace
-
-DirectPass::DirectPass(const scene::Scene& scene, const GdmltSettings& settings, const RenderOptions& options)
+DirectPass::DirectPass(const scene::Scene& scene, const PathSettings& settings, const RenderOptions& options,
+                       std::string label)
     : m_scene(scene),
-      m_tracer(scene, direct_settings(settings), std::min(2, options.max_depth)),
+      m_tracer(scene, settings, std::min(2, options.max_depth)),
       m_opt(options),
+      m_label(std::move(label)),
       m_w(scene.camera().width()),
       m_h(scene.camera().height()),
       m_sum(size_t(m_w) * size_t(m_h), Rgbd::Zero()),
@@ -37,7 +30,7 @@ void DirectPass::render(int spp) {
   o.seed = core::mix64(core::mix64(m_opt.seed ^ 0xD1EC'7000'0000'0001ull) + uint64_t(m_passes++));
   std::atomic<int64_t> dropped{0};
   const auto& cam = m_scene.camera();
-  const ScheduleResult sched = run_tiles(m_w, m_h, o, "gdmlt direct", [&](const Tile& tile, int n, core::Rng& rng, int) {
+  const ScheduleResult sched = run_tiles(m_w, m_h, o, m_label, [&](const Tile& tile, int n, core::Rng& rng, int) {
     PathCounters counters;
     int64_t bad = 0;
     for (int y = tile.y0; y < tile.y1; ++y)

@@ -1,13 +1,14 @@
-// GD-MLT's direct light: paths of at most 2 segments (emitters seen directly and direct
-// lighting of the first hit) by the reference path tracer, the part of the image the
-// chains do not sample (Manzi et al. 2014, Sec. 4: "direct illumination ... separately").
+// The direct light of the MCMC integrators: paths of at most 2 segments (emitters seen
+// directly and direct lighting of the first hit) by the reference path tracer, the part
+// of the image the chains do not sample (GD-MLT: Manzi et al. 2014, Sec. 4, "direct
+// illumination ... separately"; path-space MLT: Mitsuba 0.6's directSamples).
 // Rendered in passes that may be interleaved with the chains' rounds, so an interrupted
 // render has both parts; each pass has its own random streams (seed, pass index).
 #pragma once
 
+#include <string>
 #include <vector>
 
-#include "integrators/gdmlt/gdmlt_settings.h"
 #include "integrators/integrator.h"
 #include "integrators/path/path_tracer.h"
 
@@ -15,7 +16,8 @@ namespace dp::integrators {
 
 class DirectPass {
  public:
-  DirectPass(const scene::Scene& scene, const GdmltSettings& settings, const RenderOptions& options);
+  // `label`: the progress line's name ("gdmlt direct", ...).
+  DirectPass(const scene::Scene& scene, const PathSettings& settings, const RenderOptions& options, std::string label);
   // Adds `spp` samples per pixel (fewer in tiles an interruption skipped).
   void render(int spp);
   core::Image image() const;
@@ -27,6 +29,7 @@ class DirectPass {
   const scene::Scene& m_scene;
   PathTracer m_tracer;
   RenderOptions m_opt;
+  std::string m_label;
   int m_w, m_h;
   std::vector<Rgbd> m_sum;
   std::vector<int64_t> m_count;  // samples per pixel
