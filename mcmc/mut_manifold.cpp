@@ -58,13 +58,25 @@ bool ManifoldPerturbation::eligible_start(const PathState& s, int i) const {
   return v.bsdf && !v.bsdf->is_purely_delta();
 }
 
+bool ManifoldPerturbation::valid_start(const PathState& s, int a, int step, int& b, int& c) const {
+  const int K = s.depth();
+  if (!eligible_start(s, a)) return false;
+  b = next_smooth(s, a, step);
+  if (b < 0 || b > K || s.v[size_t(b)].kind != BidirKind::surface) return false;
+  c = next_smooth(s, b, step);
+  if (c < 0 || c > K) return false;
+  const BidirVertex& vc = s.v[size_t(c)];
+  return vc.kind != BidirKind::camera && !vc.infinite() && (std::abs(c - b) < 2 || gradients::chain_end(vc));
+}
+
 double ManifoldPerturbation::start_pmf(const PathState& s, int a, int step) const {
   const int K = s.depth();
-  const double sensor = s.v[size_t(K - 1)].delta ? 0.0 : m_opt.sensor_prob;
-  int n = 0;
-  for (int i = 0; i <= K; ++i) n += eligible_start(s, i);
+  int b = 0, c = 0, n = 0;
+  for (int i = 0; i <= K; ++i)
+    for (int d : {-1, 1}) n += valid_start(s, i, d, b, c);
+  const double sensor = valid_start(s, K, -1, b, c) ? m_opt.sensor_prob : 0.0;
   double p = (a == K && step == -1) ? sensor : 0.0;
-  if (n > 0 && eligible_start(s, a)) p += (1.0 - sensor) * 0.5 / double(n);
+  if (n > 0 && valid_start(s, a, step, b, c)) p += (1.0 - sensor) / double(n);
   return p;
 }
 
@@ -84,26 +96,22 @@ double ManifoldPerturbation::kappa(const PathState& s, int a, int step) const {
 ProposalStatus ManifoldPerturbation::sample(const PathState& x, PathState& y, MutationRecord& rec, core::Rng& rng,
                                             PathSides& sides) const {
   const int K = x.depth();
-  // 1. (a, step), then b and c.
-  int a = K, step = -1;
-  const double sensor = x.v[size_t(K - 1)].delta ? 0.0 : m_opt.sensor_prob;
+  // 1. (a, step) among the starts whose b and c exist (start_pmf), then b and c.
+  int a = K, step = -1, b = 0, c = 0;
+  const double sensor = valid_start(x, K, -1, b, c) ? m_opt.sensor_prob : 0.0;
   if (!(rng.uniform_double() < sensor)) {
-    std::vector<int> starts;
+    std::vector<std::pair<int, int>> starts;
     for (int i = 0; i <= K; ++i)
-      if (eligible_start(x, i)) starts.push_back(i);
+      for (int d : {-1, 1})
+        if (valid_start(x, i, d, b, c)) starts.emplace_back(i, d);
     if (starts.empty()) return ProposalStatus::no_choice;
-    a = starts[std::min(size_t(rng.uniform_double() * double(starts.size())), starts.size() - 1)];
-    step = rng.uniform_double() < 0.5 ? -1 : 1;
+    const auto pick = starts[std::min(size_t(rng.uniform_double() * double(starts.size())), starts.size() - 1)];
+    a = pick.first;
+    step = pick.second;
   }
-  const int b = next_smooth(x, a, step);
-  if (b < 0 || b > K) return ProposalStatus::no_choice;
-  const int c = next_smooth(x, b, step);
-  if (c < 0 || c > K) return ProposalStatus::no_choice;
+  valid_start(x, a, step, b, c);
   const BidirVertex& xc = x.v[size_t(c)];
   const bool chain = std::abs(c - b) >= 2;
-  if (xc.kind == BidirKind::camera || xc.infinite() || (chain && !gradients::chain_end(xc)) ||
-      x.v[size_t(b)].kind != BidirKind::surface)
-    return ProposalStatus::no_choice;
   // The strategy whose walk covers a .. c in this direction (path_state.h's C_s).
   int s = -1;
   if (step < 0) {

@@ -2,11 +2,12 @@
 // Marschner 2012, Sec. 5; Mitsuba 0.6's mut_manifold.cpp, docs/memlt_plan.md Sec. 2.5),
 // for specular chains of Dirac vertices (glossy vertices count as smooth here; Mitsuba's
 // "glossy treated as specular" with its half-vector determinant is not built):
-//  1. (a, step): with probability `sensor_prob` (if x_{K-1} is smooth) the pinhole and
-//     step -1; else a uniform over the smooth vertices that can scatter or emit (surfaces,
-//     finite lights, the pinhole) and step +-1 with probability 1/2 each. b = the first
-//     smooth vertex after a in that direction, c = the next one (must be a surface or an
-//     area light the chain can be pinned to).
+//  1. (a, step): with probability `sensor_prob` the pinhole and step -1 (if that start
+//     is valid), else uniform over the valid starts: a a smooth vertex that can scatter or
+//     emit (surface, finite light, pinhole), b = the first smooth vertex after a in that
+//     direction (a surface), c = the next one (a surface or an area light the chain can
+//     be pinned to). Mitsuba draws a and step blindly and retries; the explicit pmf over
+//     the valid starts spends no proposal on an impossible one.
 //  2. The direction leaving x_a toward b turns by a vMF sample about the old one whose
 //     peak density is lambda^2 max(1/(4 pi), p(w_old)) (p: the walk's density of the old
 //     direction on the path being perturbed; lambda = 50).
@@ -47,6 +48,9 @@ class ManifoldPerturbation final : public Mutator {
 
  private:
   bool eligible_start(const PathState& s, int i) const;
+  // a can start in direction step: b (a surface) and c (pinnable: a surface or an area light
+  // past a chain; any smooth vertex but the pinhole or a light at infinity next to b) exist.
+  bool valid_start(const PathState& s, int a, int step, int& b, int& c) const;
   // Walk density of leaving vertex i of s toward i + step (arriving from i - step).
   double leave_density(const PathState& s, int i, int step) const;
   double kappa(const PathState& s, int a, int step) const;
