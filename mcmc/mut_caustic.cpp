@@ -73,9 +73,7 @@ ProposalStatus CausticPerturbation::sample(const PathState& x, PathState& y, Mut
   const double theta = t2 * std::exp(-std::log(t2 / t1) * rng.uniform_double());
   const double phi = 2.0 * kPiD * rng.uniform_double();
   rec.theta = theta;
-  const Frame f = Frame::from_normal(direction_between(x.v[size_t(l)], x.v[size_t(l + 1)]));
-  const double st = std::sin(theta);
-  const Vec3 w = f.to_world(Vec3(float(st * std::cos(phi)), float(st * std::sin(phi)), float(std::cos(theta)))).normalized();
+  const Vec3 w = turn_direction(direction_between(x.v[size_t(l)], x.v[size_t(l + 1)]), std::cos(theta), phi);
   y.v = x.v;
   const ProposalStatus s = retrace_chain(m_scene, x, y.v, l, K - 1, w, scene::TransportMode::importance);
   if (s != ProposalStatus::ok) return s;

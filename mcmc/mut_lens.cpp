@@ -24,12 +24,9 @@ ProposalStatus LensPerturbation::sample(const PathState& x, PathState& y, Mutati
                                         PathSides& sides) const {
   const int K = x.depth(), c = first_smooth_from_camera(x);
   rec.l = c - 1;
-  const double r = m_r2 * std::exp(-std::log(m_r2 / m_r1) * rng.uniform_double());
-  const double phi = 2.0 * kPiD * rng.uniform_double();
-  const Vec2 raster(float(double(x.raster.x()) + r * std::cos(phi)), float(double(x.raster.y()) + r * std::sin(phi)));
+  Vec2 raster;
+  if (!offset_raster(m_scene, x.raster, m_r1, m_r2, rng, raster)) return ProposalStatus::off_image;
   const auto& cam = m_scene.camera();
-  if (!(raster.x() >= 0.0f && raster.y() >= 0.0f && raster.x() < float(cam.width()) && raster.y() < float(cam.height())))
-    return ProposalStatus::off_image;
   y.v = x.v;
   const ProposalStatus st =
       retrace_chain(m_scene, x, y.v, K, c, cam.generate_ray(raster).d, scene::TransportMode::radiance);

@@ -128,9 +128,7 @@ ProposalStatus ManifoldPerturbation::sample(const PathState& x, PathState& y, Mu
   const Vec3 w_old = direction_between(x.v[size_t(a)], x.v[size_t(a + step)]);
   double cos_t = 1, phi = 0;
   core::vmf_sample(kappa(x, a, step), rng.uniform_double(), rng.uniform_double(), cos_t, phi);
-  const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-  const Frame f = Frame::from_normal(w_old);
-  const Vec3 w = f.to_world(Vec3(float(sin_t * std::cos(phi)), float(sin_t * std::sin(phi)), float(cos_t))).normalized();
+  const Vec3 w = turn_direction(w_old, cos_t, phi);
   // 3. a -> b re-traced, b .. c walked.
   y.v = x.v;
   ProposalStatus st = retrace_chain(m_scene, x, y.v, a, b, w, walk_mode(step));

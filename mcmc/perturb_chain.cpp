@@ -1,5 +1,7 @@
 #include "mcmc/perturb_chain.h"
 
+#include <cmath>
+
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
 #include "pathspace/scatter.h"
@@ -72,6 +74,21 @@ double dirac_chain_prob(const PathState& s, int a, int b, scene::TransportMode m
     p *= double(bs->pdf);
   }
   return p;
+}
+
+bool offset_raster(const scene::Scene& scene, const Vec2& raster, double r1, double r2, core::Rng& rng, Vec2& out) {
+  const double r = r2 * std::exp(-std::log(r2 / r1) * rng.uniform_double());
+  const double phi = 2.0 * kPiD * rng.uniform_double();
+  out = Vec2(float(double(raster.x()) + r * std::cos(phi)), float(double(raster.y()) + r * std::sin(phi)));
+  const auto& cam = scene.camera();
+  return out.x() >= 0.0f && out.y() >= 0.0f && out.x() < float(cam.width()) && out.y() < float(cam.height());
+}
+
+Vec3 turn_direction(const Vec3& w, double cos_theta, double phi) {
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const Frame f = Frame::from_normal(w);
+  return f.to_world(Vec3(float(sin_theta * std::cos(phi)), float(sin_theta * std::sin(phi)), float(cos_theta)))
+      .normalized();
 }
 
 bool connection_visible(const scene::Scene& scene, const PathState& y, int s, PathSides& sides) {

@@ -30,6 +30,13 @@ Vec3 direction_between(const pathspace::BidirVertex& from, const pathspace::Bidi
 // lens perturbation's smooth end (x_{K-1} itself when it is smooth).
 int first_smooth_from_camera(const PathState& x);
 
+// The raster position moved by r (cos phi, sin phi), r log-uniform on [r1, r2] and phi
+// uniform (Veach's lens offset; symmetric); false if it leaves the image.
+bool offset_raster(const scene::Scene& scene, const Vec2& raster, double r1, double r2, core::Rng& rng, Vec2& out);
+
+// Unit direction at angle theta (cos given) and azimuth phi about the unit direction w.
+Vec3 turn_direction(const Vec3& w, double cos_theta, double phi);
+
 // Whether strategy s's connection edge of y (evaluated) is unoccluded.
 bool connection_visible(const scene::Scene& scene, const PathState& y, int s, PathSides& sides);
 

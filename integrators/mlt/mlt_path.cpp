@@ -10,6 +10,7 @@
 #include "mcmc/mut_caustic.h"
 #include "mcmc/mut_lens.h"
 #include "mcmc/mut_manifold.h"
+#include "mcmc/mut_multichain.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_json.h"
 #include "mcmc/path_seed.h"
@@ -95,6 +96,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const mcmc::BidirMutation bidir(scene, lengths, settings.path_fault);
   const mcmc::LensPerturbation lens(scene);
   const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
+  const mcmc::MultiChainPerturbation multichain(scene, lens.r1(), lens.r2());
   mcmc::ManifoldSettings ms;
   ms.lambda = settings.manifold_lambda;
   ms.sensor_prob = settings.manifold_sensor_prob;
@@ -104,6 +106,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     mutators.push_back({m == "lens"       ? static_cast<const mcmc::Mutator*>(&lens)
                         : m == "caustic"  ? static_cast<const mcmc::Mutator*>(&caustic)
                         : m == "manifold" ? static_cast<const mcmc::Mutator*>(&manifold)
+                        : m == "multichain" ? static_cast<const mcmc::Mutator*>(&multichain)
                                              : static_cast<const mcmc::Mutator*>(&bidir),
                         1.0});
   const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
@@ -138,7 +141,11 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     const int px = std::clamp(int(p.raster.x()), 0, w - 1), py = std::clamp(int(p.raster.y()), 0, h - 1);
     out.add(0, int64_t(py) * w + px, p.colour.cast<double>() * weight);
   };
-  const ChainRunResult run = run_chains(sc, options, name, [&](int c, int64_t n, SplatList& out, int) {
+  // --time is the whole render's budget: the seeding and the direct pass used part of it
+  // (the chains still run at least one round).
+  RenderOptions chain_options = options;
+  if (options.time_budget > 0) chain_options.time_budget = std::max(1e-3, options.time_budget - timer.seconds());
+  const ChainRunResult run = run_chains(sc, chain_options, name, [&](int c, int64_t n, SplatList& out, int) {
     mcmc::PathChain& chain = chains[size_t(c)];
     for (int64_t m = 0; m < n; ++m) {
       const mcmc::PathStep st = chain.step();

@@ -27,20 +27,21 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
   m.path_space = mutations == "path";
   const std::string mutators = s.get_string(
       "mutators", m.mutators_preset,
-      "path-space mutations (mutations=path): veach (= bidir,lens,caustic), memlt (= bidir,lens,caustic,manifold) or a "
+      "path-space mutations (mutations=path): veach (= bidir,lens,caustic,multichain), memlt (= veach + manifold) or a "
       "comma list of bidir (Veach's bidirectional mutation, needed: the only one that changes lengths), lens, caustic, "
-      "manifold (Jakob & Marschner's manifold perturbation); multichain is not built yet");
+      "multichain, manifold (Jakob & Marschner's manifold perturbation)");
   m.mutators.clear();
   if (mutators == "veach" || mutators == "memlt") {
-    m.mutators = {"bidir", "lens", "caustic"};
+    m.mutators = {"bidir", "lens", "caustic", "multichain"};
     if (mutators == "memlt") m.mutators.push_back("manifold");
   } else {
     size_t at = 0;
     while (at <= mutators.size()) {
       const size_t end = std::min(mutators.find(',', at), mutators.size());
       const std::string name = mutators.substr(at, end - at);
-      if (name != "bidir" && name != "lens" && name != "caustic" && name != "manifold")
-        throw ValueError("setting 'mutators': unknown mutation '" + name + "' (bidir, lens, caustic, manifold, veach or memlt)",
+      if (name != "bidir" && name != "lens" && name != "caustic" && name != "multichain" && name != "manifold")
+        throw ValueError("setting 'mutators': unknown mutation '" + name +
+                             "' (bidir, lens, caustic, multichain, manifold, veach or memlt)",
                          "--set");
       m.mutators.push_back(name);
       at = end + 1;

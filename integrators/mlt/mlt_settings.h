@@ -21,10 +21,10 @@ struct MltSettings {
   int rr_depth = 5;              // Russian roulette after this many segments (as PT)
   bool nee = true;               // next-event estimation with MIS inside each path (as PT)
   // Path-space chains (docs/memlt_plan.md): mutations=path and the mutation set
-  // (bidir, lens, caustic; "veach" = all three).
+  // (bidir, lens, caustic, multichain, manifold; "veach" = the first four).
   bool path_space = false;
   std::string mutators_preset = "veach";  // the default of `mutators` (memlt: "memlt")
-  std::vector<std::string> mutators{"bidir", "lens", "caustic"};
+  std::vector<std::string> mutators{"bidir", "lens", "caustic", "multichain"};
   double manifold_lambda = 50;       // vMF peak factor of the manifold perturbation
   double manifold_sensor_prob = 0.25;
   int direct_spp = 16;          // path space: direct light (<= 2 segments) by PT at this many spp (0: by the chains)

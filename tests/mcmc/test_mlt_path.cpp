@@ -38,7 +38,7 @@ struct Variant {
   const char* direct_spp = "16";  // "0": the chains render direct light too
 };
 
-test::BlockStats mlt_path_stats(const scene::Scene& s, const Variant& v, double* acceptance) {
+test::BlockStats mlt_path_stats(const scene::Scene& s, const Variant& v, double* acceptance, int depth) {
   test::BlockStats st;
   for (int r = 0; r < kRuns; ++r) {
     integrators::Settings settings;
@@ -49,7 +49,7 @@ test::BlockStats mlt_path_stats(const scene::Scene& s, const Variant& v, double*
     integrators::MltSettings m = integrators::MltSettings::read(settings);
     m.path_fault = v.bidir_fault;
     integrators::MltIntegrator in(m, settings.to_json());
-    auto res = in.render(s, test::quiet_options(256, 500 + uint64_t(r), kDepth));
+    auto res = in.render(s, test::quiet_options(256, 500 + uint64_t(r), depth));
     *acceptance = res.info["acceptance_rate"].number();
 
     REQUIRE(res.stats.get("mlt.nan_dropped") == 0);
@@ -64,9 +64,10 @@ scene::BsdfPtr rough_conductor() {
 }
 
 // Worst |t|/crit of variant v against the PT runs (printed).
-double worst(const char* scene_name, const scene::Scene& s, const test::BlockStats& pt, const Variant& v) {
+double worst(const char* scene_name, const scene::Scene& s, const test::BlockStats& pt, const Variant& v,
+             int depth = kDepth) {
   double acceptance = 0, first = 0;
-  const test::BlockStats mlt = mlt_path_stats(s, v, &acceptance);
+  const test::BlockStats mlt = mlt_path_stats(s, v, &acceptance, depth);
   const double w = test::worst_welch(mlt, pt, 0.01, &first);
   const test::Moments a = test::moments(mlt[0]), b = test::moments(pt[0]);
   std::printf("mlt path [%s, %s]: mean %.5f +- %.5f vs PT %.5f +- %.5f; |t|/crit mean %.2f, worst block %.2f; "
@@ -141,6 +142,15 @@ TEST_CASE("mlt mutations=path: the manifold perturbation on a caustic agrees wit
   const auto s = test::caustic_box(kRes);
   const test::BlockStats pt = test::path_block_stats(*s, kRuns, 256, kDepth, kBlock);
   CHECK(worst("caustic box", *s, pt, {"bidir + manifold", "bidir,manifold"}) < 1.0);
+}
+
+// Two glass spheres, paths up to 10 segments: the camera sees through one sphere a floor
+// lit through the other (E S S D S S D ..), where the multi-chain perturbation applies.
+TEST_CASE("mlt mutations=path: Veach's mutations with the multi-chain perturbation agree with the path tracer", "[stat]") {
+  const auto glass = scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx);
+  const auto s = test::lit_box(glass, glass, kRes);
+  const test::BlockStats pt = test::path_block_stats(*s, kRuns, 64, 10, kBlock);
+  CHECK(worst("two glass spheres", *s, pt, {"bidir + multichain", "bidir,multichain"}, 10) < 1.0);
 }
 
 TEST_CASE("mlt mutations=path: replay=CHAIN:STEP re-runs one chain to a step, the same each time", "[unit]") {

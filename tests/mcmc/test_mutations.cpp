@@ -16,6 +16,7 @@
 #include "mcmc/mut_caustic.h"
 #include "mcmc/mut_lens.h"
 #include "mcmc/mut_manifold.h"
+#include "mcmc/mut_multichain.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_seed.h"
 #include "scene/bsdfs.h"
@@ -31,23 +32,24 @@ struct Tally {
 };
 
 // Runs a veach chain on `scene` and tries every suitable mutation at each visited state.
-std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fault, int steps) {
+std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fault, int steps, int max_depth = 6) {
   mcmc::BidirLengths lengths;
-  lengths.k_max = 6 + 2;
+  lengths.k_max = max_depth + 2;
   const mcmc::BidirMutation bidir(scene, lengths, fault);
   const mcmc::LensPerturbation lens(scene);
   const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
   const mcmc::ManifoldPerturbation manifold(scene);
-  const std::vector<const mcmc::Mutator*> all{&bidir, &lens, &caustic, &manifold};
+  const mcmc::MultiChainPerturbation multichain(scene, lens.r1(), lens.r2());
+  const std::vector<const mcmc::Mutator*> all{&bidir, &lens, &caustic, &manifold, &multichain};
   mcmc::PathSeedOptions so;
-  so.max_depth = 6;
+  so.max_depth = max_depth;
   so.samples = 2000;
   so.seed = 3;
   const mcmc::PathSeeder seeder(scene, so);
   mcmc::PathState x, y;
   mcmc::PathSides sides;
   REQUIRE(seeder.select(0.37, x, sides));
-  mcmc::PathChain chain({{&bidir, 1.0}, {&lens, 1.0}, {&caustic, 1.0}, {&manifold, 1.0}}, 5, 0);
+  mcmc::PathChain chain({{&bidir, 1.0}, {&lens, 1.0}, {&caustic, 1.0}, {&manifold, 1.0}, {&multichain, 1.0}}, 5, 0);
   chain.start(x);
   core::Rng rng(9, 1);
   std::vector<Tally> out(all.size());
@@ -71,7 +73,7 @@ std::vector<Tally> check(const scene::Scene& scene, mcmc::BidirMutationFault fau
   return out;
 }
 
-const char* kNames[] = {"bidir", "lens", "caustic", "manifold"};
+const char* kNames[] = {"bidir", "lens", "caustic", "manifold", "multichain"};
 
 }  // namespace
 
@@ -97,6 +99,17 @@ TEST_CASE("path mutations: ratio(x -> y) * ratio(y -> x) = 1 for every mutation"
       CHECK(t[3].pairs > 300);
     }
   }
+  // Two glass spheres and deep paths: the camera sees through one sphere a floor lit
+  // through the other (E S S D S S D ..), the multi-chain perturbation's case.
+  const auto glass = scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx);
+  const auto two = test::lit_box(glass, glass, 16);
+  const auto deep = check(*two, mcmc::BidirMutationFault::none, 6000, 10);
+  for (size_t m = 0; m < deep.size(); ++m) {
+    std::printf("mutation symmetry [two glass spheres, depth 10, %s]: %lld pairs, worst |r r' - 1| %.3g\n", kNames[m],
+                (long long)deep[m].pairs, deep[m].worst);
+    CHECK(deep[m].worst < 1e-9);
+  }
+  CHECK(deep[4].pairs > 50);
   // The reverse pmf evaluated on x breaks the symmetry wherever x's and y's admissible
   // left ends or lengths differ.
   const auto bad = check(*box, mcmc::BidirMutationFault::pmf_from_source, 3000);
