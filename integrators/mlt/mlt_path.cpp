@@ -85,7 +85,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   so.seed = options.seed;
   so.threads = threads;
   // Direct light (<= 2 segments) by the path tracer, the chains the rest (Mitsuba 0.6).
-  const bool direct = settings.direct_spp > 0 && settings.replay_chain < 0;
+  const bool direct = settings.direct_spp >= 0 && settings.replay_chain < 0;
   so.min_depth = direct ? 3 : 1;
   const mcmc::PathSeeder seeder(scene, so);
   const double bootstrap_seconds = timer.seconds();
@@ -128,10 +128,14 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     PathSettings ps;
     ps.rr_depth = settings.rr_depth;
     direct_pass = std::make_unique<DirectPass>(scene, ps, options, name + " direct");
-    direct_pass->render(settings.direct_spp);
+    direct_pass->render(settings.direct_spp > 0 ? settings.direct_spp : 1);
   }
 
   ChainSchedule sc;
+  // Auto: after every round (about one mutation per pixel) the direct pass catches up to
+  // as many samples per pixel as rounds, so an interrupted render has both parts.
+  if (direct_pass && settings.direct_spp == 0)
+    sc.after_round = [&](int64_t rounds) { direct_pass->render(int(rounds - direct_pass->spp_done())); };
   sc.chains = n_chains;
   sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
   sc.round = std::max<int64_t>(1, pixels / std::max(1, sc.chains));

@@ -56,9 +56,10 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
                                         "manifold perturbation: probability of starting at the pinhole");
   m.direct_spp = s.get_int("direct_spp", m.direct_spp,
                            "mutations=path: paths of <= 2 segments (emitters seen directly, direct lighting) rendered by "
-                           "the path tracer at this many samples per pixel and left out of the chains (Mitsuba's "
-                           "directSamples); 0: the chains render them too");
-  if (m.direct_spp < 0) throw ValueError("setting 'direct_spp' must be >= 0", "--set");
+                           "the path tracer and left out of the chains (Mitsuba's directSamples): N samples per pixel "
+                           "first, 0 = interleaved with the chains (as many samples per pixel as mutations per pixel), "
+                           "-1 = the chains render them too");
+  if (m.direct_spp < -1) throw ValueError("setting 'direct_spp' must be >= -1", "--set");
   const std::string replay = s.get_string(
       "replay", "",
       "mutations=path: CHAIN:STEP re-runs one chain to that step (no image) and writes its path, strategies and last "

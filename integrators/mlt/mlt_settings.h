@@ -27,7 +27,9 @@ struct MltSettings {
   std::vector<std::string> mutators{"bidir", "lens", "caustic", "multichain"};
   double manifold_lambda = 50;       // vMF peak factor of the manifold perturbation
   double manifold_sensor_prob = 0.25;
-  int direct_spp = 16;          // path space: direct light (<= 2 segments) by PT at this many spp (0: by the chains)
+  // Path space: direct light (<= 2 segments) by PT; 0 = auto (interleaved with the chains'
+  // rounds, as many samples per pixel as mutations per pixel), -1 = by the chains.
+  int direct_spp = 0;
   int replay_chain = -1;        // replay=CHAIN:STEP: re-run chain CHAIN to step STEP, write its state
   int64_t replay_step = 0;
   // Not a --set key: a deliberate defect of the bidirectional mutation (tests).
