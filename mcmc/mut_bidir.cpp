@@ -13,15 +13,9 @@ using pathspace::BidirVertex;
 
 namespace {
 
-Vec3 toward(const BidirVertex& from, const BidirVertex& to) {
-  if (to.infinite()) return to.sp.ng;
-  if (from.infinite()) return -from.sp.ng;
-  return (to.sp.p - from.sp.p).normalized();
-}
-
 // The walk's record at each kept vertex: wi toward its predecessor in walk order.
 void set_walk_directions(std::vector<BidirVertex>& side) {
-  for (size_t i = 1; i < side.size(); ++i) side[i].wi = toward(side[i], side[i - 1]);
+  for (size_t i = 1; i < side.size(); ++i) side[i].wi = direction_between(side[i], side[i - 1]);
 }
 
 }  // namespace

@@ -77,11 +77,7 @@ ProposalStatus CausticPerturbation::sample(const PathState& x, PathState& y, Mut
   y.v = x.v;
   const ProposalStatus s = retrace_chain(m_scene, x, y.v, l, K - 1, w, scene::TransportMode::importance);
   if (s != ProposalStatus::ok) return s;
-  const bool valid = evaluate_path(m_scene, y, sides);
-  if (y.nonfinite) return ProposalStatus::nonfinite;
-  if (!valid) return ProposalStatus::off_image;
-  if (!(y.inv_c[size_t(K)] > 0.0)) return ProposalStatus::zero;
-  return connection_visible(m_scene, y, K, sides) ? ProposalStatus::ok : ProposalStatus::occluded;
+  return finish_proposal(m_scene, y, K, sides);
 }
 
 double CausticPerturbation::ratio(const PathState& x, const PathState& y, const MutationRecord& rec) const {

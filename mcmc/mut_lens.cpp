@@ -31,10 +31,7 @@ ProposalStatus LensPerturbation::sample(const PathState& x, PathState& y, Mutati
   const ProposalStatus st =
       retrace_chain(m_scene, x, y.v, K, c, cam.generate_ray(raster).d, scene::TransportMode::radiance);
   if (st != ProposalStatus::ok) return st;
-  const bool valid = evaluate_path(m_scene, y, sides);
-  if (y.nonfinite) return ProposalStatus::nonfinite;
-  if (!valid || !(y.inv_c[size_t(c)] > 0.0)) return ProposalStatus::zero;
-  return connection_visible(m_scene, y, c, sides) ? ProposalStatus::ok : ProposalStatus::occluded;
+  return finish_proposal(m_scene, y, c, sides);
 }
 
 double LensPerturbation::ratio(const PathState& x, const PathState& y, const MutationRecord& rec) const {

@@ -47,10 +47,7 @@ ProposalStatus MultiChainPerturbation::sample(const PathState& x, PathState& y, 
     const double phi = 2.0 * kPiD * rng.uniform_double();
     w = turn_direction(direction_between(x.v[size_t(from)], x.v[size_t(from - 1)]), std::cos(theta), phi);
   }
-  const bool valid = evaluate_path(m_scene, y, sides);
-  if (y.nonfinite) return ProposalStatus::nonfinite;
-  if (!valid || !(y.inv_c[size_t(c)] > 0.0)) return ProposalStatus::zero;
-  return connection_visible(m_scene, y, c, sides) ? ProposalStatus::ok : ProposalStatus::occluded;
+  return finish_proposal(m_scene, y, c, sides);
 }
 
 double MultiChainPerturbation::ratio(const PathState& x, const PathState& y, const MutationRecord& rec) const {

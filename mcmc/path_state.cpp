@@ -14,13 +14,6 @@ using scene::TransportMode;
 
 namespace {
 
-// Unit direction from vertex `from` toward vertex `to` (along a light at infinity's direction).
-Vec3 toward(const BidirVertex& from, const BidirVertex& to) {
-  if (to.infinite()) return to.sp.ng;
-  if (from.infinite()) return -from.sp.ng;
-  return (to.sp.p - from.sp.p).normalized();
-}
-
 // The factor a walk in `mode` multiplies its throughput by when it scatters at surface
 // vertex v, arriving along wi and leaving along wo (both away from v): f |cos wo| / pdf
 // of the smooth lobes, or the Dirac lobe's sample weight (f |cos| / its probability).
@@ -48,13 +41,13 @@ void light_side(const scene::Scene& scene, const std::vector<BidirVertex>& v, st
   y0.beta = pos > 0.0f ? Rgb::Constant(1.0f / pos) : Rgb::Zero();
   y0.wi = Vec3::Zero();
   if (n < 2) return;
-  const Vec3 w = toward(y0, out[1]);
+  const Vec3 w = direction_between(y0, out[1]);
   const float r = pathspace::infinite_disk_radius(scene);
   const float pdf_ray = y0.infinite() ? 1.0f / (kPi * r * r) : pathspace::light_pdf_dir(y0, w);
   out[1].beta = pdf_ray > 0.0f ? Rgb(y0.beta * pathspace::light_emit_cos(y0, w) / pdf_ray) : Rgb::Zero();
   for (size_t i = 1; i < n; ++i) {
-    out[i].wi = toward(out[i], out[i - 1]);
-    if (i + 1 < n) out[i + 1].beta = out[i].beta * step_weight(out[i], out[i].wi, toward(out[i], out[i + 1]),
+    out[i].wi = direction_between(out[i], out[i - 1]);
+    if (i + 1 < n) out[i + 1].beta = out[i].beta * step_weight(out[i], out[i].wi, direction_between(out[i], out[i + 1]),
                                                                TransportMode::importance);
   }
 }
@@ -68,8 +61,8 @@ void camera_side(const std::vector<BidirVertex>& v, std::vector<BidirVertex>& ou
   if (n < 2) return;
   out[1].beta = Rgb::Ones();
   for (size_t j = 1; j < n; ++j) {
-    out[j].wi = toward(out[j], out[j - 1]);
-    if (j + 1 < n) out[j + 1].beta = out[j].beta * step_weight(out[j], out[j].wi, toward(out[j], out[j + 1]),
+    out[j].wi = direction_between(out[j], out[j - 1]);
+    if (j + 1 < n) out[j + 1].beta = out[j].beta * step_weight(out[j], out[j].wi, direction_between(out[j], out[j + 1]),
                                                                TransportMode::radiance);
   }
   // The light endpoint as the camera walk finds it: an area light is a surface hit.
@@ -78,6 +71,12 @@ void camera_side(const std::vector<BidirVertex>& v, std::vector<BidirVertex>& ou
 }
 
 }  // namespace
+
+Vec3 direction_between(const BidirVertex& from, const BidirVertex& to) {
+  if (to.infinite()) return to.sp.ng;
+  if (from.infinite()) return -from.sp.ng;
+  return (to.sp.p - from.sp.p).normalized();
+}
 
 bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides) {
   const int K = state.depth();

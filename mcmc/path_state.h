@@ -51,6 +51,9 @@ struct PathSides {
 // (`nonfinite`: a NaN from a BSDF or light must never reach a chain).
 bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides);
 
+// Unit direction from vertex `from` toward vertex `to` (along a light at infinity's direction).
+Vec3 direction_between(const pathspace::BidirVertex& from, const pathspace::BidirVertex& to);
+
 // The full path of BDPT strategy (s, t) of the given subpaths (pathspace/bidir_subpath.h):
 // light[0 .. s-1] then camera[t-1 .. 0]; for s = 0 the camera vertex on the emitter
 // becomes the light endpoint. The connection's ends are smooth (delta false).

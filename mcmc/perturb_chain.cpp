@@ -11,12 +11,6 @@ namespace dp::mcmc {
 using pathspace::BidirKind;
 using pathspace::BidirVertex;
 
-Vec3 direction_between(const BidirVertex& from, const BidirVertex& to) {
-  if (to.infinite()) return to.sp.ng;
-  if (from.infinite()) return -from.sp.ng;
-  return (to.sp.p - from.sp.p).normalized();
-}
-
 int first_smooth_from_camera(const PathState& x) {
   int c = x.depth() - 1;
   while (c >= 0 && x.v[size_t(c)].delta) --c;
@@ -97,6 +91,17 @@ bool connection_visible(const scene::Scene& scene, const PathState& y, int s, Pa
   unweighted.unweighted = true;
   pathspace::Connection c;
   return pathspace::connect(scene, sides.light.data(), s, sides.camera.data(), y.depth() + 1 - s, unweighted, c, true);
+}
+
+}  // namespace dp::mcmc
+
+namespace dp::mcmc {
+
+ProposalStatus finish_proposal(const scene::Scene& scene, PathState& y, int s, PathSides& sides) {
+  const bool valid = evaluate_path(scene, y, sides);
+  if (y.nonfinite) return ProposalStatus::nonfinite;
+  if (!valid || !(y.inv_c[size_t(s)] > 0.0)) return ProposalStatus::zero;
+  return connection_visible(scene, y, s, sides) ? ProposalStatus::ok : ProposalStatus::occluded;
 }
 
 }  // namespace dp::mcmc

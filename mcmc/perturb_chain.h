@@ -23,9 +23,6 @@ ProposalStatus retrace_chain(const scene::Scene& scene, const PathState& x, std:
 // a deterministic re-trace's. 0 if a lobe cannot be reproduced.
 double dirac_chain_prob(const PathState& s, int a, int b, scene::TransportMode mode);
 
-// Unit direction from vertex `from` toward vertex `to` (along a light at infinity's direction).
-Vec3 direction_between(const pathspace::BidirVertex& from, const pathspace::BidirVertex& to);
-
 // The first vertex below the pinhole, walking toward the light over Dirac vertices: the
 // lens perturbation's smooth end (x_{K-1} itself when it is smooth).
 int first_smooth_from_camera(const PathState& x);
@@ -36,6 +33,10 @@ bool offset_raster(const scene::Scene& scene, const Vec2& raster, double r1, dou
 
 // Unit direction at angle theta (cos given) and azimuth phi about the unit direction w.
 Vec3 turn_direction(const Vec3& w, double cos_theta, double phi);
+
+// The end of a perturbation: evaluates y (path_state.h), and requires strategy s to give
+// a value and its connection edge to be unoccluded: ok, nonfinite, zero or occluded.
+ProposalStatus finish_proposal(const scene::Scene& scene, PathState& y, int s, PathSides& sides);
 
 // Whether strategy s's connection edge of y (evaluated) is unoccluded.
 bool connection_visible(const scene::Scene& scene, const PathState& y, int s, PathSides& sides);
