@@ -10,6 +10,7 @@ namespace dp::integrators {
 
 GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options, const std::string& label,
                                       const GradientTileFunction& fn) {
+  check_parts(w, h, options);  // before the --time loop, whose 1-spp passes hide the budget
   const int threads = resolve_threads(options);
   std::vector<gradients::GradientBuffers> buffers(size_t(threads), gradients::GradientBuffers(w, h));
   GradientPasses out;
@@ -61,6 +62,21 @@ RenderResult gradient_result(const GradientPasses& passes, const std::vector<cor
   passes.fill(result);
   result.info["settings"] = settings;
   return result;
+}
+
+RenderResult gradient_raw_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats) {
+  RenderResult result;
+  for (const auto& s : thread_stats) result.stats.merge(s);
+  result.raw = passes.total.to_raw();
+  passes.fill(result);
+  return result;
+}
+
+GradientPasses gradient_passes_from_raw(const core::RawImage& raw, int spp) {
+  GradientPasses passes;
+  passes.total = gradients::GradientBuffers::from_raw(raw);
+  for (const int64_t n : raw.count("spp")) passes.partial |= n < spp;
+  return passes;
 }
 
 void GradientPasses::fill(RenderResult& result) const {
