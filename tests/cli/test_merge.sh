@@ -92,6 +92,8 @@ check "nothing written by refused merges" test ! -e "$tmp/x.exr" -a ! -e "$tmp/x
 check "a normal render is not a partial file" \
   fails_with "single.exr: .*not a --partial file" "$bin" merge "$tmp/path/single.exr" --out "$tmp/x.exr"
 check "a missing file is named" fails_with "nope.exr" "$bin" merge "$a" "$tmp/nope.exr" --out "$tmp/x.exr"
+head -c 1200 "$tmp/path/p2-2.exr" > "$tmp/cut.exr"
+check "a truncated part is one line naming it" fails_with "cut.exr: cannot read EXR" "$bin" merge "$a" "$tmp/cut.exr" --out "$tmp/x.exr"
 
 # A missing part: merged with a warning, marked partial, never silently complete.
 "$bin" merge "$a" --quiet --out "$tmp/half.exr" 2>"$tmp/err"
@@ -101,14 +103,14 @@ check "merge of 1 of 2 parts is marked partial" json_check "$tmp/half.json" "j['
 
 # Option misuse.
 check "--partial with an integrator without support is refused" \
-  fails_with "integrator bdpt does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator bdpt --spp 1 --quiet --partial --out "$tmp/x.exr"
+  fails_with "integrator bdpt does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator bdpt --spp 1 --quiet --partial --out "$tmp/misuse.exr"
 check "--partial with --time is refused" \
-  fails_with "--partial needs --spp" "$bin" render "$tmp/scene.yaml" --time 1 --quiet --partial --out "$tmp/x.exr"
+  fails_with "--partial needs --spp" "$bin" render "$tmp/scene.yaml" --time 1 --quiet --partial --out "$tmp/misuse.exr"
 check "more parts than work units is refused" \
-  fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/x.exr"
-"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/x.exr" 2>/dev/null
-check "--part without --partial is a usage error" test $? -ne 0 -a ! -e "$tmp/x.exr"
-"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 3/2 --out "$tmp/x.exr" 2>"$tmp/err"
+  fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/misuse.exr"
+"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/misuse.exr" 2>/dev/null
+check "--part without --partial is a usage error" test $? -ne 0 -a ! -e "$tmp/misuse.exr"
+"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 3/2 --out "$tmp/misuse.exr" 2>"$tmp/err"
 check "--part 3/2 is a usage error naming --part" grep -q -- "--part" "$tmp/err"
 
 exit $fail
