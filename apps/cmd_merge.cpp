@@ -120,8 +120,7 @@ void run_merge(const MergeArgs& a) {
   side["seed"] = fact_int(first, "seed");
   side["threads"] = integrators::resolve_threads(opt);
   side["max_depth"] = opt.max_depth;
-  side["spp_requested"] = opt.spp;
-  side["time_budget"] = core::Json(nullptr);
+  side["spp_requested"] = opt.spp > 0 ? core::Json(opt.spp) : core::Json(nullptr);  // null: --time parts
   side["parts"] = first.parts;
   side["parts_merged"] = merged;
   side["merged_from"] = from;

@@ -5,7 +5,7 @@
 // signal. A signal while the scene loads exits at once with nothing written.
 // `--partial` writes FILE.exr with the raw sums and counts instead (apps/partial_file.h)
 // and FILE.json; `--part K/N` renders the K-th of N disjoint shares (tile_scheduler.h)
-// for `deltapath merge` (issue 17).
+// for `deltapath merge` (issue 17), with --spp or --time.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,7 +45,8 @@ core::Facts partial_facts(const RenderArgs& a, const std::string& hash, const st
   f["integrator"] = name;
   for (const auto& [k, v] : settings.values()) f["setting." + k] = v;
   f["seed"] = std::to_string(int64_t(opt.seed));  // as the sidecar writes it
-  f["spp"] = std::to_string(opt.spp);
+  f["spp"] = std::to_string(opt.time_budget > 0 ? 0 : opt.spp);  // 0: a --time render
+  if (opt.time_budget > 0) f["time_budget"] = std::to_string(opt.time_budget);  // may differ between parts
   f["max_depth"] = std::to_string(opt.max_depth);
   f["width"] = std::to_string(width);
   f["height"] = std::to_string(height);
@@ -96,8 +97,6 @@ void run_render(const RenderArgs& a) {
   if (a.partial) {
     if (!integrator->supports_raw())
       throw ValueError("integrator " + name + " does not support --partial yet", "command line");
-    if (a.time > 0)
-      throw ValueError("--partial needs --spp: shares of a --time render are not supported yet", "command line");
     opt.raw = true;
     if (!a.part.empty()) {
       if (!parse_part(a.part, opt.part, opt.parts)) throw ValueError("bad --part '" + a.part + "'", "command line");
@@ -171,8 +170,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--out", args->out, "output EXR (also writes .png and .json beside it)");
   cmd->add_flag("--quiet", args->quiet, "no progress bar or info messages");
   auto* partial = cmd->add_flag("--partial", args->partial,
-                                "write raw sums and sample counts for `deltapath merge` (path, gpt; needs --spp)");
-  cmd->add_option("--part", args->part, "render share K of N (1-based) of the --spp samples; needs --partial")
+                                "write raw sums and sample counts for `deltapath merge` (path, gpt)");
+  cmd->add_option("--part", args->part, "render share K of N (1-based) for `merge`; needs --partial")
       ->check(part_spec())
       ->needs(partial);
   cmd->callback([args] { run_render(*args); });

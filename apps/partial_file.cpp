@@ -14,7 +14,8 @@
 namespace dp::apps {
 
 namespace {
-const char* const kPerPartFacts[] = {"scene", "interrupted", "wall_seconds", "passes", "threads", "part"};
+const char* const kPerPartFacts[] = {"scene",   "interrupted", "wall_seconds", "passes",
+                                     "threads", "part",        "time_budget"};
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
 
@@ -81,7 +82,7 @@ PartialFile read_partial(const std::string& path) {
   f.part = int(integer_fact(f, "part", 1, f.parts));
   if (integer_fact(f, "width", 1, 1 << 30) != f.raw.width || integer_fact(f, "height", 1, 1 << 30) != f.raw.height)
     throw ValueError("facts width/height do not match the image size", path);
-  integer_fact(f, "spp", 1, 1 << 30);
+  integer_fact(f, "spp", 0, 1 << 30);  // 0: a --time render
   integer_fact(f, "max_depth", 1, 1024);
   return f;
 }

@@ -4,11 +4,12 @@
 //   format         kPartialFormat (the layout of this file)
 //   version        deltapath version that wrote it
 //   integrator     name; setting.<key>: every resolved integrator setting
-//   seed, spp, max_depth, width, height
+//   seed, spp (0 for a --time render), max_depth, width, height
 //   scene_hash     FNV-1a 64 of the scene file's bytes (files it references are not hashed)
 //   part, parts    this file is part K of N (1-based; 1/1 without --part)
 // and per-part facts that may differ between the parts of one render (kPerPartFacts):
-//   scene (the path as given), interrupted, wall_seconds, passes, threads, counter.<name>.
+//   scene (the path as given), interrupted, wall_seconds, passes, threads, time_budget
+//   (a --time render's seconds), counter.<name>.
 // Two files hold parts of the same render iff every other fact is equal.
 #pragma once
 

@@ -58,8 +58,12 @@ int progressive_pass_spp(int spp, int64_t pass) {
   return int(std::clamp<int64_t>(int64_t(spp) - done, 0, size));
 }
 
+int64_t timed_pass(const RenderOptions& options, int64_t pass) {
+  return options.parts <= 1 ? pass : pass * int64_t(options.parts) + int64_t(options.part);
+}
+
 bool owns_unit(const RenderOptions& options, int64_t pass, int tile, int tiles) {
-  if (options.parts <= 1) return true;
+  if (options.parts <= 1 || options.time_budget > 0) return true;
   return (pass * int64_t(tiles) + int64_t(tile)) % int64_t(options.parts) == int64_t(options.part);
 }
 
@@ -89,8 +93,7 @@ void check_parts(int width, int height, const RenderOptions& options) {
   if (options.parts <= 1) return;
   const std::string part = std::to_string(options.part + 1) + "/" + std::to_string(options.parts);
   if (options.part < 0 || options.part >= options.parts) throw ValueError("part " + part + " does not exist");
-  if (options.time_budget > 0)
-    throw ValueError("part " + part + ": a --time render has no fixed work to split (use --spp)");
+  if (options.time_budget > 0) return;  // every part runs its own passes (timed_pass)
   const int64_t units = work_units(width, height, options.spp);
   if (options.parts > units)
     throw ValueError("part " + part + ": --spp " + std::to_string(options.spp) + " at " + std::to_string(width) + "x" +
@@ -151,7 +154,8 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
             return;
           }
           const Tile& tile = result.tiles[size_t(item)];
-          core::Rng rng(options.seed, core::mix64(uint64_t(pass) * 0x100000001b3ull + uint64_t(tile.index)));
+          const int64_t stream_pass = timed ? timed_pass(options, pass) : pass;
+          core::Rng rng(options.seed, core::mix64(uint64_t(stream_pass) * 0x100000001b3ull + uint64_t(tile.index)));
           fn(tile, pass_spp, rng, thread);
           result.tile_spp[size_t(item)] += pass_spp;  // each tile index is owned by one worker
           tiles_done.fetch_add(1);

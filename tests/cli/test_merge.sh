@@ -4,7 +4,7 @@
 # tile_scheduler.h) for `path` and `gpt` (every layer, the Poisson reconstructions
 # included), with every pixel's count summed to --spp; incompatible files (integrator,
 # setting, seed, scene) and a repeated part are refused with one line naming the
-# difference; misuse of the options is a one-line error.
+# difference; time-budgeted parts merge; misuse of the options is a one-line error.
 # Usage: test_merge.sh path/to/deltapath  (run from the repository root)
 set -u
 bin=$1
@@ -69,6 +69,20 @@ check "gpt: merged output has the reconstruction layers" \
 check "gpt: merged sidecar sums the parts' counters" \
   json_check "$tmp/gpt/merged2.json" "j['counters'].get('gpt.samples', 0) == 72 * 40 * 8"
 
+# Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
+# own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
+# the merge has every pixel sampled and is not partial.
+for integrator in path gpt; do
+  for k in 1 2; do
+    "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
+      --partial --part $k/2 --out "$tmp/t$integrator$k.exr"
+  done
+  "$bin" merge "$tmp/t${integrator}1.exr" "$tmp/t${integrator}2.exr" --quiet --out "$tmp/t$integrator.exr"
+  check "$integrator: merge of 2 time-budgeted parts exits 0" test $? -eq 0
+  check "$integrator: merged time-budgeted parts: every pixel sampled, not partial, no spp target" \
+    json_check "$tmp/t$integrator.json" "j['spp_min'] >= 2 and not j['partial'] and j['spp_requested'] is None"
+done
+
 # Incompatible files: one line naming what differs.
 p=(render "$tmp/scene.yaml" --integrator path --spp 8 --max-depth 5 --quiet --partial --part 2/2)
 "$bin" "${p[@]}" --seed 3 --set rr_depth=3 --out "$tmp/rr.exr"
@@ -104,8 +118,6 @@ check "merge of 1 of 2 parts is marked partial" json_check "$tmp/half.json" "j['
 # Option misuse.
 check "--partial with an integrator without support is refused" \
   fails_with "integrator bdpt does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator bdpt --spp 1 --quiet --partial --out "$tmp/misuse.exr"
-check "--partial with --time is refused" \
-  fails_with "--partial needs --spp" "$bin" render "$tmp/scene.yaml" --time 1 --quiet --partial --out "$tmp/misuse.exr"
 check "more parts than work units is refused" \
   fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/misuse.exr"
 "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/misuse.exr" 2>/dev/null

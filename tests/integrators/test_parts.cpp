@@ -2,14 +2,17 @@
 // supports raw buffers: the raw buffers of 3 parts add up to those of the whole render
 // (counts exactly; sums to double rounding, since they are added in another order), each
 // part holding a strict share, and finish() of the sum gives render()'s layers bit for
-// bit. Integrators without support refuse finish() with one line naming them. The
-// end-to-end run through the CLI and EXR files is tests/cli/test_merge.sh.
+// bit. Integrators without support refuse finish() with one line naming them. Parts of a
+// time-budgeted render draw the single render's streams of passes k, n + k, ... (so they
+// never share one). The end-to-end run through the CLI and EXR files is
+// tests/cli/test_merge.sh.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
 #include "core/error.h"
 #include "integrators/integrator.h"
+#include "integrators/gradient_passes.h"
 #include "integrators/tile_scheduler.h"
 #include "scene/bsdfs.h"
 #include "tests/support/test_scenes.h"
@@ -99,4 +102,35 @@ TEST_CASE("tile scheduler: every work unit belongs to exactly one part", "[unit]
   CHECK_THROWS_WITH(integrators::check_parts(40, 40, options(0, 37, true)),
                     "part 1/37: --spp 6 at 40x40 has only 36 work units (passes x 16x16 tiles); use at most 36 parts");
   CHECK_NOTHROW(integrators::check_parts(40, 40, options(35, 36, true)));
+  integrators::RenderOptions timed = options(99, 100, true);
+  timed.time_budget = 1;  // a time-budgeted part has no unit limit
+  CHECK_NOTHROW(integrators::check_parts(40, 40, timed));
+}
+
+TEST_CASE("tile scheduler: time-budgeted parts take passes k, n + k, 2n + k, ... of the single render", "[unit]") {
+  // The first random word of every 1-spp pass of a one-tile image, as many passes as fit.
+  auto first_words = [](int part, int parts, double seconds) {
+    integrators::RenderOptions opt = options(part, parts, true);
+    opt.time_budget = seconds;
+    opt.threads = 1;
+    std::vector<uint32_t> words;
+    integrators::run_tiles(16, 16, opt, "t",
+                           [&](const integrators::Tile&, int, core::Rng& rng, int) { words.push_back(rng.next_u32()); });
+    return words;
+  };
+  const std::vector<uint32_t> single = first_words(0, 1, 0.1);
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<uint32_t> part = first_words(k, 3, 0.01);
+    size_t compared = 0;
+    for (size_t p = 0; p < part.size() && 3 * p + size_t(k) < single.size(); ++p, ++compared)
+      CHECK(part[p] == single[3 * p + size_t(k)]);
+    CHECK(compared >= 10);
+  }
+  // G-PT's time-budgeted passes are whole renders seeded per pass: the same mapping.
+  for (int k = 0; k < 3; ++k)
+    for (int64_t p = 0; p < 10; ++p) {
+      integrators::RenderOptions single_opt = options(0, 1, true), part_opt = options(k, 3, true);
+      single_opt.time_budget = part_opt.time_budget = 1;
+      CHECK(integrators::timed_pass_seed(part_opt, p) == integrators::timed_pass_seed(single_opt, 3 * p + k));
+    }
 }
