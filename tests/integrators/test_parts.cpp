@@ -134,3 +134,42 @@ TEST_CASE("tile scheduler: time-budgeted parts take passes k, n + k, 2n + k, ...
       CHECK(integrators::timed_pass_seed(part_opt, p) == integrators::timed_pass_seed(single_opt, 3 * p + k));
     }
 }
+
+TEST_CASE("integrators: merged time-budgeted parts of path are unbiased (z-test against an independent render)",
+          "[render]") {
+  // Timed parts stop at passes that depend on the machine, so this is statistical: the
+  // merged image minus an independent 64-spp render, per pixel (pixels are independent
+  // in `path`), has mean 0 within 4.5 standard errors estimated from the differences
+  // themselves (two-sided false alarm 7e-6). Counts not summed (3x too bright) fail it.
+  const auto s = test::lit_box(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f))),
+                               scene::make_diffuse(scene::constant_texture(Rgb(0.3f, 0.5f, 0.7f))), 32);
+  integrators::Settings settings;
+  auto in = integrators::make_integrator("path", settings);
+  core::RawImage sum;
+  for (int k = 0; k < 3; ++k) {
+    integrators::RenderOptions opt = options(k, 3, true);
+    opt.time_budget = 0.1;
+    opt.seed = 21;
+    const integrators::RenderResult part = in->render(*s, opt);
+    REQUIRE(part.min_spp >= 1);
+    if (k == 0) sum = part.raw;
+    else sum.add(part.raw);
+  }
+  integrators::RenderOptions merged_opt = options(0, 1, false);
+  merged_opt.spp = 0;  // no spp target, as `merge` of --time parts
+  const core::Image merged = in->finish(sum, merged_opt).layers.at(0).image;
+  integrators::RenderOptions ref_opt = options(0, 1, false);
+  ref_opt.spp = 64;
+  ref_opt.seed = 99;
+  const core::Image ref = in->render(*s, ref_opt).layers.at(0).image;
+  double mean = 0, sq = 0;
+  const double n = double(ref.size());
+  for (size_t i = 0; i < ref.size(); ++i) {
+    const double d = double(merged[i].mean()) - double(ref[i].mean());
+    mean += d / n;
+    sq += d * d / n;
+  }
+  const double stderr_mean = std::sqrt(std::max(sq - mean * mean, 1e-30) / (n - 1));
+  INFO("mean difference " << mean << ", standard error " << stderr_mean);
+  CHECK(std::abs(mean) < 4.5 * stderr_mean);
+}
