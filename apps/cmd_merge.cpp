@@ -31,12 +31,12 @@ struct MergeArgs {
   bool quiet = false;
 };
 
-// Reads every input and checks that they are distinct parts of one render; returns them
-// sorted by part, so the sum does not depend on the order of the command line.
+// Reads every input's header and checks that they are distinct parts of one render;
+// returns them sorted by part, so the sum does not depend on the order of the command line.
 std::vector<PartialFile> read_parts(const std::vector<std::string>& paths) {
   std::vector<PartialFile> files;
   for (const auto& p : paths) {
-    files.push_back(read_partial(p));
+    files.push_back(read_partial(p, false));
     const PartialFile& f = files.back();
     const PartialFile& first = files.front();
     const std::string diff = first_difference(first, f);
@@ -58,8 +58,14 @@ void run_merge(const MergeArgs& a) {
   core::Timer timer;
   const std::vector<PartialFile> files = read_parts(a.inputs);
   const PartialFile& first = files.front();
-  core::RawImage total = first.raw;
-  for (size_t i = 1; i < files.size(); ++i) total.add(files[i].raw);
+  // One file's pixels in memory at a time besides the total, added in part order.
+  core::RawImage total = read_partial(first.path).raw;
+  for (size_t i = 1; i < files.size(); ++i) {
+    const PartialFile part = read_partial(files[i].path);
+    const std::string diff = total.layout_difference(part.raw);
+    if (!diff.empty()) throw ValueError("cannot merge with " + first.path + ": buffers differ: " + diff, part.path);
+    total.add(part.raw);
+  }
 
   integrators::Settings settings;
   for (const auto& [k, v] : first.facts)

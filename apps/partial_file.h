@@ -36,13 +36,14 @@ std::string deltapath_version();
 
 void write_partial(const std::string& path, const core::RawImage& raw, const core::Facts& facts);
 // Reads and validates a --partial file (format, integer facts, size); IoError/ValueError
-// naming the file.
-PartialFile read_partial(const std::string& path);
+// naming the file. With pixels = false only its header (raw has the size, no buffers).
+PartialFile read_partial(const std::string& path, bool pixels = true);
 // The fact `key` as an integer in [lo, hi]; ValueError naming the file otherwise
 // (read_partial has checked spp, max_depth, seed, passes, width, height, counter.*).
 int64_t integer_fact(const PartialFile& f, const std::string& key, int64_t lo, int64_t hi);
 // Empty if `a` and `b` may be merged as parts of one render, otherwise the first fact
-// that differs, as "<key> differs (A: <value>, B: <value>)" with the two file names.
+// that differs, as "<key> differs (A: <value>, B: <value>)" with the two file names, or
+// how their buffers differ (when both hold buffers).
 std::string first_difference(const PartialFile& a, const PartialFile& b);
 // Whether `key` is a per-part fact (not compared by first_difference).
 bool is_per_part_fact(const std::string& key);

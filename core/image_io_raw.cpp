@@ -108,7 +108,7 @@ void write_raw_exr(const std::string& path, const RawImage& raw, const Facts& fa
   }
 }
 
-RawImage read_raw_exr(const std::string& path, Facts& facts) {
+RawImage read_raw_exr(const std::string& path, Facts& facts, bool pixels) {
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
@@ -127,6 +127,7 @@ RawImage read_raw_exr(const std::string& path, Facts& facts) {
     raw.width = dw.max.x - dw.min.x + 1;
     raw.height = dw.max.y - dw.min.y + 1;
     const size_t n = raw.pixels();
+    if (!pixels) return raw;
     // Every channel base is "<sum>.R|G|B" or "<count>.n".
     std::map<std::string, Words> words;
     Imf::FrameBuffer fb;

@@ -20,7 +20,9 @@ using Facts = std::map<std::string, std::string>;  // key (without "deltapath.")
 
 void write_raw_exr(const std::string& path, const RawImage& raw, const Facts& facts);
 // Reads the buffers and every "deltapath.*" string attribute into `facts`. Throws if the
-// file has no "deltapath.*" attribute or no raw channel.
-RawImage read_raw_exr(const std::string& path, Facts& facts);
+// file has no "deltapath.*" attribute or no raw channel. With pixels = false only the
+// header is read: the result has the size but no buffers (a merge checks every file's
+// facts before it reads any file's pixels, then holds one file at a time).
+RawImage read_raw_exr(const std::string& path, Facts& facts, bool pixels = true);
 
 }  // namespace dp::core
