@@ -109,6 +109,9 @@ check "a missing file is named" fails_with "nope.exr" "$bin" merge "$a" "$tmp/no
 head -c 1200 "$tmp/path/p2-2.exr" > "$tmp/cut.exr"
 check "a truncated part is one line naming it" fails_with "cut.exr: cannot read EXR" "$bin" merge "$a" "$tmp/cut.exr" --out "$tmp/x.exr"
 
+"$bin" compare "$a" "$tmp/path/single.exr" 2>"$tmp/err" >/dev/null
+check "compare on a partial file says to merge it first" grep -q "merge. it first" "$tmp/err"
+
 # A missing part: merged with a warning, marked partial, never silently complete.
 "$bin" merge "$a" --quiet --out "$tmp/half.exr" 2>"$tmp/err"
 check "merge of 1 of 2 parts exits 0" test $? -eq 0
