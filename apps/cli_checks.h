@@ -41,4 +41,31 @@ inline const CLI::Validator& seconds() {
   return v;
 }
 
+// `--part K/N` (issue 17): part K of N, 1 <= K <= N <= kMaxParts. parse_part returns
+// false for anything else (the validator's message names the form).
+constexpr int kMaxParts = 1 << 20;
+inline bool parse_part(const std::string& s, int& k, int& n) {
+  const size_t slash = s.find('/');
+  if (slash == std::string::npos) return false;
+  const std::string a = s.substr(0, slash), b = s.substr(slash + 1);
+  auto digits = [](const std::string& t) {
+    return !t.empty() && t.size() <= 8 && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (!digits(a) || !digits(b)) return false;
+  k = std::stoi(a);
+  n = std::stoi(b);
+  return k >= 1 && k <= n && n <= kMaxParts;
+}
+inline const CLI::Validator& part_spec() {
+  static const CLI::Validator v(
+      [](std::string& s) -> std::string {
+        int k = 0, n = 0;
+        if (parse_part(s, k, n)) return std::string();
+        return "expects K/N with 1 <= K <= N <= " + std::to_string(kMaxParts) + ", got '" + s.substr(0, 40) +
+               (s.size() > 40 ? "...'" : "'");
+      },
+      "K/N");
+  return v;
+}
+
 }  // namespace dp::apps

@@ -3,6 +3,10 @@
 // time, samples, counters, partial flag). SIGINT/SIGTERM (apps/interrupt.h) stop at the
 // next tile boundary and keep what was rendered, marked partial; main then exits 128 +
 // signal. A signal while the scene loads exits at once with nothing written.
+// `--partial` writes FILE.exr with the raw sums and counts instead (apps/partial_file.h)
+// and FILE.json; `--part K/N` renders the K-th of N disjoint shares (tile_scheduler.h)
+// for `deltapath merge` (issue 17), with --spp or --time.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -10,6 +14,7 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "apps/output.h"
+#include "apps/partial_file.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/timer.h"
@@ -28,7 +33,36 @@ struct RenderArgs {
   uint64_t seed = 0;
   std::vector<std::string> sets;
   bool quiet = false;
+  bool partial = false;
+  std::string part;  // "K/N" (validated by part_spec)
 };
+
+// The facts of a --partial file (apps/partial_file.h) of this render.
+core::Facts partial_facts(const RenderArgs& a, const std::string& hash, const std::string& name,
+                          const integrators::Settings& settings, const integrators::RenderOptions& opt,
+                          const integrators::RenderResult& result, int width, int height) {
+  core::Facts f;
+  f["integrator"] = name;
+  for (const auto& [k, v] : settings.values()) f["setting." + k] = v;
+  f["seed"] = std::to_string(int64_t(opt.seed));  // as the sidecar writes it
+  f["spp"] = std::to_string(opt.time_budget > 0 ? 0 : opt.spp);  // 0: a --time render
+  if (opt.time_budget > 0) f["time_budget"] = std::to_string(opt.time_budget);  // may differ between parts
+  f["max_depth"] = std::to_string(opt.max_depth);
+  f["width"] = std::to_string(width);
+  f["height"] = std::to_string(height);
+  f["scene_hash"] = hash;
+  f["part"] = std::to_string(opt.part + 1);
+  f["parts"] = std::to_string(opt.parts);
+  f["scene"] = a.scene;
+  f["interrupted"] = result.partial ? "true" : "false";
+  f["wall_seconds"] = std::to_string(result.wall_seconds);
+  f["threads"] = std::to_string(integrators::resolve_threads(opt));
+  core::Json info = result.info;
+  const double passes = info["passes"].number();
+  f["passes"] = std::to_string(std::isfinite(passes) ? int64_t(passes) : int64_t(0));
+  for (const auto& [k, v] : result.stats.counters()) f["counter." + k] = std::to_string(v);
+  return f;
+}
 
 void run_render(const RenderArgs& a) {
   if (a.quiet) log::set_level(log::Level::warn);
@@ -36,6 +70,7 @@ void run_render(const RenderArgs& a) {
   core::Timer load_timer;
   const auto scene = scene::load_scene(a.scene, {manifold::normal_estimation_hook()});
   const double load_seconds = load_timer.seconds();
+  const std::string hash = a.partial ? scene_hash(a.scene) : std::string();  // the bytes just loaded
   enable_graceful_stop();  // from here a first signal stops the render and keeps it
   const auto& defaults = scene->integrator_defaults();
 
@@ -59,6 +94,16 @@ void run_render(const RenderArgs& a) {
   opt.stop = stop_flag();
   if (opt.max_depth < 1) throw ValueError("--max-depth must be >= 1", "command line");
   if (a.time < 0) throw ValueError("--time must be positive", "command line");
+  if (a.partial) {
+    if (!integrator->supports_raw())
+      throw ValueError("integrator " + name + " does not support --partial yet", "command line");
+    opt.raw = true;
+    if (!a.part.empty()) {
+      if (!parse_part(a.part, opt.part, opt.parts)) throw ValueError("bad --part '" + a.part + "'", "command line");
+      opt.part -= 1;  // 0-based from here on
+    }
+    integrators::check_parts(scene->camera().width(), scene->camera().height(), opt);
+  }
 
   log::info("rendering ", a.scene, " with ", name, " (", scene->camera().width(), "x", scene->camera().height(),
             a.time > 0 ? ", " + std::to_string(a.time) + " s" : ", " + std::to_string(opt.spp) + " spp", ")");
@@ -80,6 +125,10 @@ void run_render(const RenderArgs& a) {
   if (result.partial) log::warn("render interrupted: writing the ", result.min_spp, "..", result.max_spp, " spp rendered so far");
 
   core::Json side = core::Json::object();
+  if (a.partial) {
+    side["part"] = std::to_string(opt.part + 1) + "/" + std::to_string(opt.parts);
+    side["partial_file"] = true;  // FILE.exr holds raw sums and counts: `deltapath merge` them
+  }
   side["scene"] = a.scene;
   side["integrator"] = name;
   side["settings"] = settings.to_json();
@@ -90,7 +139,13 @@ void run_render(const RenderArgs& a) {
   side["time_budget"] = a.time > 0 ? core::Json(a.time) : core::Json(nullptr);
   side["load_seconds"] = load_seconds;
   side["interrupted_by"] = sig ? core::Json(signal_name(sig)) : core::Json(nullptr);
-  write_render_outputs(a.out, result, side);
+  if (a.partial) {
+    write_partial(a.out, result.raw, partial_facts(a, hash, name, settings, opt, result, scene->camera().width(),
+                                                   scene->camera().height()));
+    write_sidecar(a.out, result, side);
+  } else {
+    write_render_outputs(a.out, result, side);
+  }
   if (sig)
     log::warn("wrote partial ", a.out, " (", result.min_spp, " spp); exiting with status ", interrupted_exit_status());
   else log::info("wrote ", a.out, " (", result.wall_seconds, " s, ", result.min_spp, " spp)");
@@ -114,6 +169,11 @@ void register_render(CLI::App& app) {
   cmd->add_option("--set", args->sets, "integrator setting key=value (repeatable)");
   cmd->add_option("--out", args->out, "output EXR (also writes .png and .json beside it)");
   cmd->add_flag("--quiet", args->quiet, "no progress bar or info messages");
+  auto* partial = cmd->add_flag("--partial", args->partial,
+                                "write raw sums and sample counts for `deltapath merge` (path, gpt)");
+  cmd->add_option("--part", args->part, "render share K of N (1-based) for `merge`; needs --partial")
+      ->check(part_spec())
+      ->needs(partial);
   cmd->callback([args] { run_render(*args); });
 }
 

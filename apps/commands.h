@@ -10,5 +10,6 @@ void register_render(CLI::App& app);
 void register_info(CLI::App& app);
 void register_compare(CLI::App& app);
 void register_layer(CLI::App& app);
+void register_merge(CLI::App& app);
 
 }  // namespace dp::apps

@@ -1,4 +1,4 @@
-// deltapath: command-line front end (render, info, compare, layer, reconstruct, experiment, stress).
+// deltapath: command-line front end (render, merge, info, compare, layer, reconstruct, experiment, stress).
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   dp::apps::register_info(app);
   dp::apps::register_compare(app);
   dp::apps::register_layer(app);
+  dp::apps::register_merge(app);
   dp::apps::register_reconstruct(app);
   dp::apps::register_experiment(app);
   dp::apps::register_stress(app);

@@ -35,17 +35,23 @@ void write_render_outputs(const std::string& exr_path, integrators::RenderResult
     log::warn("some pixels have no sample (time budget too small?): the output is marked partial");
     result.partial = true;
   }
+  sidecar["nonfinite_pixels_zeroed"] = uint64_t(nonfinite);
+  write_sidecar(exr_path, result, std::move(sidecar));
+}
+
+void write_sidecar(const std::string& exr_path, const integrators::RenderResult& result, core::Json sidecar) {
   sidecar["wall_seconds"] = result.wall_seconds;
   sidecar["spp_min"] = result.min_spp;
   sidecar["spp_max"] = result.max_spp;
   sidecar["partial"] = result.partial;
-  sidecar["nonfinite_pixels_zeroed"] = uint64_t(nonfinite);
   sidecar["peak_rss_bytes"] = peak_rss_bytes();  // the whole process: scene, render and outputs
-  core::Json layers = core::Json::array();
-  for (const auto& l : result.layers) layers.push_back(l.name.empty() ? "RGB" : l.name);
-  sidecar["layers"] = layers;
-  const Rgbd mean = result.layers.at(0).image.mean();
-  sidecar["mean"] = core::Json(core::Json::Array{mean[0], mean[1], mean[2]});
+  if (!result.layers.empty()) {
+    core::Json layers = core::Json::array();
+    for (const auto& l : result.layers) layers.push_back(l.name.empty() ? "RGB" : l.name);
+    sidecar["layers"] = layers;
+    const Rgbd mean = result.layers.at(0).image.mean();
+    sidecar["mean"] = core::Json(core::Json::Array{mean[0], mean[1], mean[2]});
+  }
   core::Json counters = core::Json::object();
   for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
   sidecar["counters"] = counters;

@@ -12,5 +12,8 @@ namespace dp::apps {
 // Replaces the extension of `exr_path` (".exr" or none) by `ext` (".png", ".json").
 std::string sibling_path(const std::string& exr_path, const std::string& ext);
 void write_render_outputs(const std::string& exr_path, integrators::RenderResult& result, core::Json sidecar);
+// FILE.json alone: the caller's fields + wall time, spp range, partial, peak memory,
+// counters, info, and the layer names and mean of the first layer if there are layers.
+void write_sidecar(const std::string& exr_path, const integrators::RenderResult& result, core::Json sidecar);
 
 }  // namespace dp::apps

@@ -4,6 +4,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 
 #include <map>
 
@@ -66,7 +67,12 @@ std::vector<NamedLayer> read_exr_layers(const std::string& path) {
       const std::string comp = dot == std::string::npos ? name : name.substr(dot + 1);
       if (comp == "R" || comp == "G" || comp == "B" || comp == "Y") groups[layer][comp[0]] = name;
     }
-    if (groups.empty()) throw IoError("EXR has no R/G/B or Y channels", path);
+    if (groups.empty()) {
+      const bool raw = file.header().findTypedAttribute<Imf::StringAttribute>("deltapath.format") != nullptr;
+      throw IoError(raw ? "a `render --partial` file holds raw sums, not an image: `deltapath merge` it first"
+                        : "EXR has no R/G/B or Y channels",
+                    path);
+    }
     std::vector<NamedLayer> layers;
     layers.reserve(groups.size());
     Imf::FrameBuffer fb;

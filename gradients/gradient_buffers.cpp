@@ -31,6 +31,27 @@ void GradientBuffers::clear() {
   std::fill(m_count.begin(), m_count.end(), 0);
 }
 
+core::RawImage GradientBuffers::to_raw() const {
+  core::RawImage raw;
+  raw.width = m_w;
+  raw.height = m_h;
+  raw.sums = {{"primal", m_primal}, {"dx", m_dx}, {"dy", m_dy}, {"direct", m_direct}};
+  raw.counts = {{"spp", m_count}};
+  return raw;
+}
+
+GradientBuffers GradientBuffers::from_raw(const core::RawImage& raw) {
+  GradientBuffers b;
+  b.m_w = raw.width;
+  b.m_h = raw.height;
+  b.m_primal = raw.sum("primal");
+  b.m_dx = raw.sum("dx");
+  b.m_dy = raw.sum("dy");
+  b.m_direct = raw.sum("direct");
+  b.m_count = raw.count("spp");
+  return b;
+}
+
 core::Image GradientBuffers::normalized(const std::vector<Rgbd>& sums) const {
   core::Image img(m_w, m_h);
   for (size_t i = 0; i < sums.size(); ++i)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/raw_image.h"
 
 namespace dp::gradients {
 
@@ -38,6 +39,10 @@ class GradientBuffers {
   core::Image dx() const { return normalized(m_dx); }
   core::Image dy() const { return normalized(m_dy); }
   core::Image direct() const { return normalized(m_direct); }
+  // The raw sums "primal", "dx", "dy", "direct" and the count "spp" (render --partial),
+  // and back: from_raw throws dp::ValueError naming a missing buffer.
+  core::RawImage to_raw() const;
+  static GradientBuffers from_raw(const core::RawImage& raw);
 
  private:
   size_t index(int x, int y) const { return size_t(y) * size_t(m_w) + size_t(x); }

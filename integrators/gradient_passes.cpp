@@ -10,6 +10,7 @@ namespace dp::integrators {
 
 GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options, const std::string& label,
                                       const GradientTileFunction& fn) {
+  check_parts(w, h, options);
   const int threads = resolve_threads(options);
   std::vector<gradients::GradientBuffers> buffers(size_t(threads), gradients::GradientBuffers(w, h));
   GradientPasses out;
@@ -31,7 +32,11 @@ GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options
     pass_opt.spp = 1;
     pass_opt.quiet = true;
     do {
-      pass_opt.seed = core::mix64(options.seed * 0x9e3779b97f4a7c15ull + uint64_t(out.passes));
+      // A time-budgeted part k of n takes the seeds of passes k, n + k, 2n + k, ... of the
+      // single render (tile_scheduler.h), and each of its passes is whole (no split).
+      pass_opt.seed = timed_pass_seed(options, out.passes);
+      pass_opt.part = 0;
+      pass_opt.parts = 1;
       const ScheduleResult sched = run_tiles(w, h, pass_opt, label, tile_fn);
       ++out.passes;
       commit(!sched.partial);
@@ -61,6 +66,25 @@ RenderResult gradient_result(const GradientPasses& passes, const std::vector<cor
   passes.fill(result);
   result.info["settings"] = settings;
   return result;
+}
+
+uint64_t timed_pass_seed(const RenderOptions& options, int64_t pass) {
+  return core::mix64(options.seed * 0x9e3779b97f4a7c15ull + uint64_t(timed_pass(options, pass)));
+}
+
+RenderResult gradient_raw_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats) {
+  RenderResult result;
+  for (const auto& s : thread_stats) result.stats.merge(s);
+  result.raw = passes.total.to_raw();
+  passes.fill(result);
+  return result;
+}
+
+GradientPasses gradient_passes_from_raw(const core::RawImage& raw, int spp) {
+  GradientPasses passes;
+  passes.total = gradients::GradientBuffers::from_raw(raw);
+  for (const int64_t n : raw.count("spp")) passes.partial |= n < spp;
+  return passes;
 }
 
 void GradientPasses::fill(RenderResult& result) const {

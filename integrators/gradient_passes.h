@@ -37,6 +37,18 @@ using GradientTileFunction =
 RenderResult gradient_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats, float alpha,
                              const std::string& reconstruction, int threads, const core::Json& settings);
 
+// `render --partial` (options.raw): the raw buffers (GradientBuffers::to_raw), merged
+// counters and fill(), without the reconstruction.
+RenderResult gradient_raw_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats);
+// `merge`: the passes of summed raw buffers (partial when a pixel has fewer than `spp`
+// samples), ready for gradient_result.
+GradientPasses gradient_passes_from_raw(const core::RawImage& raw, int spp);
+
+// The seed of 1-spp pass `pass` of a time-budgeted render (or of part options.part of
+// options.parts of one: the seed of the single render's pass timed_pass(options, pass)).
+uint64_t timed_pass_seed(const RenderOptions& options, int64_t pass);
+
+// Throws dp::ValueError for options.part/parts this driver cannot honour (tile_scheduler.h).
 GradientPasses render_gradient_passes(int width, int height, const RenderOptions& options, const std::string& label,
                                       const GradientTileFunction& fn);
 

@@ -12,6 +12,7 @@
 
 #include "core/image_io.h"
 #include "core/json.h"
+#include "core/raw_image.h"
 #include "core/stats.h"
 #include "integrators/settings.h"
 #include "scene/scene.h"
@@ -26,6 +27,12 @@ struct RenderOptions {
   int max_depth = 8;         // path segments, camera to light (a directly seen light is 1)
   bool quiet = false;        // no progress bar
   const std::atomic<bool>* stop = nullptr;  // set asynchronously (Ctrl-C): stop at next tile
+  // A share of a fixed-spp render (`render --part K/N`, issue 17): this process renders
+  // only the work units (pass, tile) that tile_scheduler.h assigns to part `part` of
+  // `parts` (0-based), with the same random streams the whole render would use.
+  int part = 0, parts = 1;
+  // Fill RenderResult::raw (sums and counts, for `--partial`) instead of the final layers.
+  bool raw = false;
 };
 
 struct RenderResult {
@@ -35,6 +42,7 @@ struct RenderResult {
   double wall_seconds = 0;
   int64_t min_spp = 0, max_spp = 0;  // per-pixel sample counts actually rendered
   bool partial = false;              // stopped before the requested budget
+  core::RawImage raw;                // with RenderOptions::raw: the accumulation buffers
 };
 
 class Integrator {
@@ -42,6 +50,12 @@ class Integrator {
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
   virtual RenderResult render(const scene::Scene& scene, const RenderOptions& options) = 0;
+  // `render --partial` / `merge` (issue 17). An integrator that supports them renders
+  // RenderResult::raw when RenderOptions::raw is set, honours part/parts, and turns raw
+  // buffers (one render's, or the sum of its parts') into the layers render() would give
+  // (options: spp requested, threads). The default refuses with a one-line error.
+  virtual bool supports_raw() const { return false; }
+  virtual RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const;
 };
 
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>(Settings&)>;

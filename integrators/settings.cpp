@@ -95,6 +95,12 @@ core::Json Settings::to_json() const {
   return j;
 }
 
+std::vector<std::pair<std::string, std::string>> Settings::values() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [k, r] : m_resolved) out.emplace_back(k, r.value);
+  return out;
+}
+
 std::string Settings::describe() const {
   std::string out;
   for (const auto& [k, r] : m_resolved) out += "  " + k + " = " + r.value + "  : " + r.doc + "\n";

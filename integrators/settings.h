@@ -29,6 +29,8 @@ class Settings {
   // Throws dp::ValueError naming the first key that no getter read.
   void check_all_used(const std::string& integrator) const;
   core::Json to_json() const;
+  // Every resolved (key, value), in the order the integrator read them.
+  std::vector<std::pair<std::string, std::string>> values() const;
   // "key = default: doc" lines for --help style listings.
   std::string describe() const;
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
@@ -57,6 +58,49 @@ int progressive_pass_spp(int spp, int64_t pass) {
   return int(std::clamp<int64_t>(int64_t(spp) - done, 0, size));
 }
 
+int64_t timed_pass(const RenderOptions& options, int64_t pass) {
+  return options.parts <= 1 ? pass : pass * int64_t(options.parts) + int64_t(options.part);
+}
+
+bool owns_unit(const RenderOptions& options, int64_t pass, int tile, int tiles) {
+  if (options.parts <= 1 || options.time_budget > 0) return true;
+  return (pass * int64_t(tiles) + int64_t(tile)) % int64_t(options.parts) == int64_t(options.part);
+}
+
+namespace {
+// Calls fn(pass, pass_spp) for every pass of a progressive render of `spp` (the sizes of
+// progressive_pass_spp, in time linear in the number of passes).
+template <class Fn>
+void for_each_pass(int spp, Fn&& fn) {
+  int64_t done = 0, size = 1;
+  for (int64_t pass = 0; done < spp; ++pass) {
+    const int64_t n = std::min<int64_t>(size, int64_t(spp) - done);
+    fn(pass, int(n));
+    done += n;
+    if (pass > 0) size = std::min<int64_t>(2 * size, kMaxPassSpp);
+  }
+}
+}  // namespace
+
+int64_t work_units(int width, int height, int spp) {
+  int64_t passes = 0;
+  for_each_pass(spp, [&](int64_t, int) { ++passes; });
+  const int64_t tiles = int64_t((width + kTileSize - 1) / kTileSize) * int64_t((height + kTileSize - 1) / kTileSize);
+  return passes * tiles;
+}
+
+void check_parts(int width, int height, const RenderOptions& options) {
+  if (options.parts <= 1) return;
+  const std::string part = std::to_string(options.part + 1) + "/" + std::to_string(options.parts);
+  if (options.part < 0 || options.part >= options.parts) throw ValueError("part " + part + " does not exist");
+  if (options.time_budget > 0) return;  // every part runs its own passes (timed_pass)
+  const int64_t units = work_units(width, height, options.spp);
+  if (options.parts > units)
+    throw ValueError("part " + part + ": --spp " + std::to_string(options.spp) + " at " + std::to_string(width) + "x" +
+                     std::to_string(height) + " has only " + std::to_string(units) +
+                     " work units (passes x 16x16 tiles); use at most " + std::to_string(units) + " parts");
+}
+
 ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
                          const TileFunction& fn, const PassFunction& pass_done) {
   ScheduleResult result;
@@ -73,11 +117,22 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
       result.tiles.push_back(t);
     }
   result.tile_spp.assign(result.tiles.size(), 0);
+  check_parts(width, height, options);
   const bool timed = options.time_budget > 0;
   const int threads = resolve_threads(options);
   const int spp = timed ? 1 : std::max(1, options.spp);
+  const int n_tiles = int(result.tiles.size());
+  // Samples per pixel each tile should reach: spp, or this part's share of it.
+  std::vector<int64_t> target(result.tiles.size(), 0);
+  if (!timed)
+    for_each_pass(spp, [&](int64_t pass, int pass_spp) {
+      for (int t = 0; t < n_tiles; ++t)
+        if (owns_unit(options, pass, t, n_tiles)) target[size_t(t)] += pass_spp;
+    });
+  int64_t work = 0;
+  for (const int64_t t : target) work += t;
   core::Timer timer;
-  core::Progress progress(label, timed ? 1000 : int64_t(result.tiles.size()) * spp, options.quiet);
+  core::Progress progress(label, timed ? 1000 : work, options.quiet);
   std::atomic<bool> stop{false};
   auto should_stop = [&] {
     if (options.stop && options.stop->load()) return true;
@@ -86,16 +141,21 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
   for (int64_t pass = 0;; ++pass) {
     const int pass_spp = timed ? 1 : progressive_pass_spp(spp, pass);
     if (pass_spp == 0 || should_stop()) break;
+    int64_t owned = 0;
+    for (int t = 0; t < n_tiles; ++t) owned += owns_unit(options, pass, t, n_tiles) ? 1 : 0;
+    if (owned == 0) continue;  // another part's pass
     std::atomic<int64_t> tiles_done{0};
     core::parallel_for(
         int64_t(result.tiles.size()), threads,
         [&](int64_t item, int thread) {
+          if (!owns_unit(options, pass, int(item), n_tiles)) return;
           if (should_stop()) {
             stop.store(true);
             return;
           }
           const Tile& tile = result.tiles[size_t(item)];
-          core::Rng rng(options.seed, core::mix64(uint64_t(pass) * 0x100000001b3ull + uint64_t(tile.index)));
+          const int64_t stream_pass = timed ? timed_pass(options, pass) : pass;
+          core::Rng rng(options.seed, core::mix64(uint64_t(stream_pass) * 0x100000001b3ull + uint64_t(tile.index)));
           fn(tile, pass_spp, rng, thread);
           result.tile_spp[size_t(item)] += pass_spp;  // each tile index is owned by one worker
           tiles_done.fetch_add(1);
@@ -104,13 +164,15 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
         },
         &stop);
     ++result.passes;
-    if (pass_done) pass_done(pass, tiles_done.load() == int64_t(result.tiles.size()));
+    if (pass_done) pass_done(pass, tiles_done.load() == owned);
     if (stop.load()) break;
   }
   progress.finish();
   result.seconds = timer.seconds();
   const bool interrupted = options.stop && options.stop->load();
-  result.partial = interrupted || (!timed && result.min_spp() < spp);
+  bool short_of_target = false;
+  for (size_t t = 0; t < target.size(); ++t) short_of_target |= result.tile_spp[t] < target[t];
+  result.partial = interrupted || (!timed && short_of_target);
   return result;
 }
 

@@ -10,6 +10,16 @@
 // pass or not at all, and its sample count says so. `pass_done(pass, complete)` (optional)
 // runs after each pass on the calling thread; complete = every tile rendered it
 // (integrators that need whole passes, e.g. G-PT's pair estimates, commit only those).
+// Shares (`render --part K/N`, issue 17): the work units of a fixed-spp render are its
+// (pass, tile) pairs; part k of n renders unit (pass, tile) iff (pass * tiles + tile) % n
+// == k, with the unit's usual stream. The n parts together take every sample of the
+// whole render exactly once, with the same random numbers, so their summed raw buffers
+// hold the same samples (added in another order: equal up to double rounding). Passes
+// without a unit of this part are skipped (no pass_done); `complete` means every unit of
+// this part in the pass was rendered. A time-budgeted part renders every tile in its 1-spp
+// passes, its pass p drawing the streams of pass p * n + k of a single time-budgeted
+// render (timed_pass): parts never share a stream, and parts that all reach P passes sum
+// to exactly the single render that reached n * P passes.
 #pragma once
 
 #include <functional>
@@ -84,6 +94,17 @@ ScheduleResult run_tiles(int width, int height, const RenderOptions& options, co
 
 // Samples per pixel of pass `pass` of a progressive render of `spp` in all (0 = no more).
 int progressive_pass_spp(int spp, int64_t pass);
+
+// The pass whose streams pass `pass` of a time-budgeted part uses (see above).
+int64_t timed_pass(const RenderOptions& options, int64_t pass);
+// Whether part options.part of options.parts renders work unit (pass, tile) of a fixed-spp
+// render (see above; always true with a time budget).
+bool owns_unit(const RenderOptions& options, int64_t pass, int tile, int tiles);
+// The number of work units (passes x tiles) of a fixed-spp render of `spp`: at most this
+// many parts can each get a share. check_parts throws dp::ValueError when options ask for
+// a part that does not exist or, with --spp, for more parts than units.
+int64_t work_units(int width, int height, int spp);
+void check_parts(int width, int height, const RenderOptions& options);
 
 // Threads that run_tiles will use for these options.
 int resolve_threads(const RenderOptions& options);

@@ -28,8 +28,17 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
         counters.flush(thread_stats[size_t(thread)]);
       });
 
-  RenderResult result =
-      gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+  RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
+                                    : gradient_result(passes, thread_stats, m_settings.alpha,
+                                                      m_settings.reconstruction, threads, m_json);
+  result.wall_seconds = timer.seconds();
+  return result;
+}
+
+RenderResult GptIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  core::Timer timer;
+  RenderResult result = gradient_result(gradient_passes_from_raw(raw, options.spp), {}, m_settings.alpha,
+                                        m_settings.reconstruction, resolve_threads(options), m_json);
   result.wall_seconds = timer.seconds();
   return result;
 }

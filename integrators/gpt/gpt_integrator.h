@@ -4,7 +4,8 @@
 // "" (RGB: the reconstruction chosen by `reconstruction`, default L1), recon_l1, recon_l2,
 // primal (MIS-weighted primal + direct), dx, dy (forward differences, direct light
 // excluded) and direct (emitters seen directly from the camera: never shifted, kept out
-// of the Poisson solve and added to both reconstructions).
+// of the Poisson solve and added to both reconstructions). `--partial` writes the sums
+// and counts of primal, dx, dy and direct before any reconstruction; finish() runs it.
 #pragma once
 
 #include "integrators/gpt/gpt_settings.h"
@@ -17,6 +18,8 @@ class GptIntegrator final : public Integrator {
   explicit GptIntegrator(Settings& settings) : m_settings(GptSettings::read(settings)), m_json(settings.to_json()) {}
   std::string name() const override { return "gpt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GptSettings m_settings;

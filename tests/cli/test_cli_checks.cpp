@@ -41,3 +41,13 @@ TEST_CASE("cli: --spp, --max-depth, --time and --threads reject extreme values",
   for (const char* bad : {"100000", "-1", "1025"}) CHECK_FALSE(accepts<int>(thread_count(), bad));
   for (const char* ok : {"0", "1", "1024"}) CHECK(accepts<int>(thread_count(), ok));
 }
+
+TEST_CASE("cli: --part accepts K/N with 1 <= K <= N only", "[unit]") {
+  for (const char* ok : {"1/1", "1/3", "3/3", "07/8"}) CHECK(accepts<std::string>(dp::apps::part_spec(), ok));
+  for (const char* bad : {"0/3", "4/3", "3", "/3", "1/", "1/0", "-1/3", "1/-3", "a/b", "1/2/3", "1 /2", "1/2097152",
+                          "999999999/999999999", ""})
+    CHECK_FALSE(accepts<std::string>(dp::apps::part_spec(), bad));
+  int k = 0, n = 0;
+  REQUIRE(dp::apps::parse_part("2/5", k, n));
+  CHECK((k == 2 && n == 5));
+}

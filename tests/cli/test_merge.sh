@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# `render --partial --part K/N` + `merge` (issue 17): the merged parts of a render equal
+# the single-process render bit for bit (same (pass, tile) work units and random streams,
+# tile_scheduler.h) for `path` and `gpt` (every layer, the Poisson reconstructions
+# included), with every pixel's count summed to --spp; incompatible files (integrator,
+# setting, seed, scene) and a repeated part are refused with one line naming the
+# difference; time-budgeted parts merge; misuse of the options is a one-line error.
+# Usage: test_merge.sh path/to/deltapath  (run from the repository root)
+set -u
+bin=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+check() {  # check DESCRIPTION CONDITION...
+  local what=$1; shift
+  if "$@"; then echo "ok   - $what"; else echo "FAIL - $what"; fail=1; fi
+}
+# json_check FILE PYTHON-EXPRESSION (on `j`, the parsed sidecar)
+json_check() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" 2>/dev/null; }
+# fails_with MESSAGE-REGEX COMMAND...: exit 1 and exactly one stderr line matching.
+fails_with() {
+  local pattern=$1; shift
+  "$@" 2>"$tmp/err" >/dev/null
+  local code=$?
+  [ $code -eq 1 ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] && grep -Eq -- "$pattern" "$tmp/err" && return 0
+  echo "       exit $code, stderr: $(head -c 300 "$tmp/err")"
+  return 1
+}
+# Bit-identical EXRs (the writer puts no time stamp in the file); on a difference, the metrics.
+same_exr() {
+  cmp -s "$1" "$2" && return 0
+  "$bin" compare "$1" "$2" | sed 's/^/       /'
+  return 1
+}
+
+# 72 x 40 pixels: 5 x 3 = 15 tiles, so with 2 parts a pixel's passes alternate between
+# the parts (their sums are added in another order than the single render adds them),
+# with 3 parts each part keeps its tiles; glossy materials exercise G-PT's shifts.
+sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
+common=(--spp 8 --seed 3 --max-depth 5 --quiet)
+
+for integrator in path gpt; do
+  d="$tmp/$integrator"
+  mkdir -p "$d"
+  r=("$bin" render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
+  "${r[@]}" --threads 2 --out "$d/single.exr"
+  check "$integrator: single render exits 0" test $? -eq 0
+  for n in 2 3; do
+    files=()
+    for k in $(seq 1 $n); do
+      # Thread counts differ between the parts: the result must not depend on them.
+      "${r[@]}" --threads $((1 + k % 2)) --partial --part "$k/$n" --out "$d/p$k-$n.exr"
+      check "$integrator: part $k/$n exits 0" test $? -eq 0
+      check "$integrator: part $k/$n holds a share, not all (sidecar spp $k/$n)" \
+        json_check "$d/p$k-$n.json" "j['part'] == '$k/$n' and j['spp_max'] > 0 and j['spp_min'] < 8 and not j['partial']"
+      files=("$d/p$k-$n.exr" "${files[@]}")  # reversed: merge sorts by part
+    done
+    "$bin" merge "${files[@]}" --threads 2 --quiet --out "$d/merged$n.exr"
+    check "$integrator: merge of $n parts exits 0" test $? -eq 0
+    check "$integrator: merge of $n parts writes exr/png/json" test -s "$d/merged$n.png" -a -s "$d/merged$n.json"
+    check "$integrator: merged counts are 8 spp everywhere, not partial" \
+      json_check "$d/merged$n.json" "j['spp_min'] == 8 and j['spp_max'] == 8 and not j['partial'] and j['parts_merged'] == list(range(1, $n + 1))"
+    check "$integrator: merge of $n parts equals the single render bit for bit (all layers)" \
+      same_exr "$d/merged$n.exr" "$d/single.exr"
+  done
+done
+check "gpt: merged output has the reconstruction layers" \
+  json_check "$tmp/gpt/merged2.json" "all(l in j['layers'] for l in ['recon_l1', 'recon_l2', 'primal', 'dx', 'dy'])"
+check "gpt: merged sidecar sums the parts' counters" \
+  json_check "$tmp/gpt/merged2.json" "j['counters'].get('gpt.samples', 0) == 72 * 40 * 8"
+
+# Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
+# own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
+# the merge has every pixel sampled and is not partial.
+for integrator in path gpt; do
+  for k in 1 2; do
+    "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
+      --partial --part $k/2 --out "$tmp/t$integrator$k.exr"
+  done
+  "$bin" merge "$tmp/t${integrator}1.exr" "$tmp/t${integrator}2.exr" --quiet --out "$tmp/t$integrator.exr"
+  check "$integrator: merge of 2 time-budgeted parts exits 0" test $? -eq 0
+  check "$integrator: merged time-budgeted parts: every pixel sampled, not partial, no spp target" \
+    json_check "$tmp/t$integrator.json" "j['spp_min'] >= 2 and not j['partial'] and j['spp_requested'] is None"
+done
+
+# Incompatible files: one line naming what differs.
+p=(render "$tmp/scene.yaml" --integrator path --spp 8 --max-depth 5 --quiet --partial --part 2/2)
+"$bin" "${p[@]}" --seed 3 --set rr_depth=3 --out "$tmp/rr.exr"
+"$bin" "${p[@]}" --seed 4 --out "$tmp/seed.exr"
+sed 's/albedo: \[0.725, 0.71, 0.68\]/albedo: [0.7, 0.7, 0.7]/' "$tmp/scene.yaml" > "$tmp/other.yaml"
+"$bin" render "$tmp/other.yaml" "${common[@]}" --integrator path --partial --part 2/2 --out "$tmp/scene2.exr"
+a="$tmp/path/p1-2.exr"
+check "merge path + gpt parts is refused naming the integrator" \
+  fails_with "p2-2.exr: cannot merge with .*p1-2.exr: integrator differs \(.*: path, .*: gpt\)" "$bin" merge "$a" "$tmp/gpt/p2-2.exr" --out "$tmp/x.exr"
+check "merge with another setting is refused naming it" \
+  fails_with "setting.rr_depth differs \(.*: 5, .*: 3\)" "$bin" merge "$a" "$tmp/rr.exr" --out "$tmp/x.exr"
+check "merge with another seed is refused naming it" \
+  fails_with "seed differs \(.*: 3, .*: 4\)" "$bin" merge "$a" "$tmp/seed.exr" --out "$tmp/x.exr"
+check "merge with another scene is refused naming the scene hash" \
+  fails_with "scene_hash differs" "$bin" merge "$a" "$tmp/scene2.exr" --out "$tmp/x.exr"
+check "merge of parts of different splits is refused" \
+  fails_with "parts differs \(.*: 2, .*: 3\)" "$bin" merge "$a" "$tmp/path/p2-3.exr" --out "$tmp/x.exr"
+check "a repeated part is refused" \
+  fails_with "p1-2.exr: part 1/2 is also in .*p1-2.exr" "$bin" merge "$a" "$tmp/path/p2-2.exr" "$a" --out "$tmp/x.exr"
+check "nothing written by refused merges" test ! -e "$tmp/x.exr" -a ! -e "$tmp/x.json"
+check "a normal render is not a partial file" \
+  fails_with "single.exr: .*not a --partial file" "$bin" merge "$tmp/path/single.exr" --out "$tmp/x.exr"
+check "a missing file is named" fails_with "nope.exr" "$bin" merge "$a" "$tmp/nope.exr" --out "$tmp/x.exr"
+head -c 1200 "$tmp/path/p2-2.exr" > "$tmp/cut.exr"
+check "a truncated part is one line naming it" fails_with "cut.exr: cannot read EXR" "$bin" merge "$a" "$tmp/cut.exr" --out "$tmp/x.exr"
+
+"$bin" compare "$a" "$tmp/path/single.exr" 2>"$tmp/err" >/dev/null
+check "compare on a partial file says to merge it first" grep -q "merge. it first" "$tmp/err"
+
+# A missing part: merged with a warning, marked partial, never silently complete.
+"$bin" merge "$a" --quiet --out "$tmp/half.exr" 2>"$tmp/err"
+check "merge of 1 of 2 parts exits 0" test $? -eq 0
+check "merge of 1 of 2 parts warns about part 2" grep -q "parts 2 of 2 are missing" "$tmp/err"
+check "merge of 1 of 2 parts is marked partial" json_check "$tmp/half.json" "j['partial'] and j['spp_min'] < 8"
+
+# Option misuse.
+check "--partial with an integrator without support is refused" \
+  fails_with "integrator bdpt does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator bdpt --spp 1 --quiet --partial --out "$tmp/misuse.exr"
+check "more parts than work units is refused" \
+  fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/misuse.exr"
+"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/misuse.exr" 2>/dev/null
+check "--part without --partial is a usage error" test $? -ne 0 -a ! -e "$tmp/misuse.exr"
+"$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 3/2 --out "$tmp/misuse.exr" 2>"$tmp/err"
+check "--part 3/2 is a usage error naming --part" grep -q -- "--part" "$tmp/err"
+
+exit $fail
