@@ -55,7 +55,7 @@ void PairTerms::prepare_offset(const ShiftResult* res) {
   }
 }
 
-const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_segments) {
+const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_segments, bool keep_zero) {
   const pathspace::Path& base = *m_base;
   const int n = base.size();
   prepare_offset(res);
@@ -81,7 +81,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
       t.jacobian = m_jprefix[size_t(k)] * J;
       if (ol.visible) t.fo = m_beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
     }
-    if ((t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
+    if (!keep_zero && (t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
     m_terms.push_back(t);
   }
   // BSDF paths (x_0..x_k) whose last vertex may emit: k segments. The light densities (for
@@ -91,7 +91,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     const Vertex& bv = base[k];
     const bool has_offset = k < alive;
     const bool base_emits = !is_black(bv.emission);
-    if (!base_emits && !(has_offset && !is_black(res->path[k].emission))) continue;
+    if (!keep_zero && !base_emits && !(has_offset && !is_black(res->path[k].emission))) continue;
     PairTerm t;
     t.segments = k;
     t.has_offset = has_offset;
@@ -107,7 +107,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
       t.jacobian = m_jprefix[size_t(k)];
       t.fo = m_beta_o[size_t(k)] * ov.emission.cast<double>();
     }
-    if ((t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
+    if (!keep_zero && (t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
     m_terms.push_back(t);
   }
   return m_terms;

@@ -44,7 +44,10 @@ class PairTerms {
   // Every concrete path of the base (and of `offset`, null = no offset, e.g. a neighbour
   // outside the image) with at least `min_segments` segments and a nonzero base or
   // offset value. The vector is reused by the next call.
-  const std::vector<PairTerm>& terms(const ShiftResult* offset, int min_segments);
+  // `keep_zero`: also the concrete paths whose base and offset values are both zero, with
+  // their densities (c, d): a balance heuristic over many pixels (path reusing, Bauszat
+  // et al. 2017, Eq. 3) counts a sampler's density even where its own path carries no light.
+  const std::vector<PairTerm>& terms(const ShiftResult* offset, int min_segments, bool keep_zero = false);
 
  private:
   void prepare_offset(const ShiftResult* offset);
