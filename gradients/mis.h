@@ -27,7 +27,9 @@ inline double symmetric_power_weight(double other_base, double offset_same, doub
 // reuse function R shifted to the other pixels:
 //   w_q,self(x) = p_q,self(x) / (p_q,self(x) + p_q,other(x) + sum_m sum_t p_m,t(R_qm x) |R'_qm|)
 // with the sum over the pixels m != q whose shift produced this concrete path (a failed
-// reuse has no sampler that could produce it and drops out). The weight depends on x and
+// reuse has no sampler that could produce it and drops out; the caller must make "failed"
+// mean the same for both techniques of a path, e.g. an occluded light sample as a failed
+// NEE reuse when a blocked reconnection fails the BSDF one). The weight depends on x and
 // its shifts only, so it is the same for every pixel x is reused in (constant over the
 // tile). Arguments are ratios to p_q,self(x): other_base = p_q,other / p_self,
 // offsets = sum over m of (p_m,self + p_m,other)(R x) |R'| / p_self.

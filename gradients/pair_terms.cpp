@@ -68,6 +68,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     PairTerm t;
     t.segments = k + 1;
     t.nee = true;
+    t.base_visible = bl.visible;
     if (bl.visible) {
       t.fb = m_beta[size_t(k)] * (bl.f_cos * bl.radiance).cast<double>() / bl.pdf;
       t.b_other = bl.bsdf_pdf / bl.pdf;
@@ -76,6 +77,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     if (t.has_offset) {
       const pathspace::LightSample& ol = res->path.nee[size_t(k)];
       const double J = res->nee_jacobian[size_t(k)];
+      t.offset_visible = ol.visible;
       t.c = m_ratio[size_t(k)] * J * ol.pdf / bl.pdf;
       t.d = ol.visible ? m_ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
       t.jacobian = m_jprefix[size_t(k)] * J;

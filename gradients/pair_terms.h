@@ -30,6 +30,9 @@ struct PairTerm {
   double b_other = 0, c = 0, d = 0;
   double jacobian = 1;
   bool has_offset = false;  // the shift produced this concrete path (fo may still be 0: not visible)
+  // NEE paths: the light sample is visible from the base's / the offset's vertex (BSDF
+  // paths: true; a BSDF path exists only where its last segment is unoccluded).
+  bool base_visible = true, offset_visible = true;
 
   double base_strategy_weight() const { return 1.0 / (1.0 + b_other * b_other); }
   double offset_strategy_weight() const { return c > 0.0 ? c * c / (c * c + d * d) : 0.0; }

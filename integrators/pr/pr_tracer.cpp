@@ -98,6 +98,7 @@ void PrTracer::reuse(const Path& base, int q, const ReuseTile& tile, ReuseFan& f
   // The base's own concrete paths (also those of value 0: their densities still weigh).
   bool any = false;
   for (const PairTerm& t : fan.pairs.terms(nullptr, 2, true)) {
+    if (!t.base_visible && !m_settings.faults.occluded_nee) continue;  // not reused (see below)
     const size_t k = ReuseFan::key(t.segments, t.nee);
     fan.present[k] = 1;
     fan.fb[k] = t.fb;
@@ -117,8 +118,15 @@ void PrTracer::reuse(const Path& base, int q, const ReuseTile& tile, ReuseFan& f
     m_shift->shift(base, Vec2(float(m % tw - qx), float(m / tw - qy)), fan.res);
     count(base, fan.res, c);
     for (const PairTerm& t : fan.pairs.terms(&fan.res, 2, true)) {
-      if (!t.has_offset) continue;  // failed reuse: no sampler of m can produce this path
+      // A failed reuse, or a light sample occluded from m's vertex: no technique of m
+      // produces this path. Occlusion counts as failure for NEE as it does for BSDF
+      // paths (whose reconnection fails when blocked), so that both techniques of a
+      // pixel see the same set of samplers; counting occluded NEE offsets (their density
+      // is > 0) but not blocked BSDF offsets gave NEE and BSDF weights that did not add
+      // up: +4% under an environment map (test_pr).
+      if (!t.has_offset || (!t.offset_visible && !m_settings.faults.occluded_nee)) continue;
       const size_t k = ReuseFan::key(t.segments, t.nee);
+      if (!fan.present[k]) continue;
       fan.denom[k] += t.c + t.d;
       if (!(t.fo == 0.0).all()) fan.splats.push_back({m, k, t.fo});
     }

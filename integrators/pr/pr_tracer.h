@@ -12,7 +12,9 @@
 //    balance heuristic over the tile's samplers (gradients::tile_balance_weight, Eq. 3),
 //    constant over the tile, and splatted as w f_p(R x)|R'| / p_q(x) into pixel p (and as
 //    w f_q(x) / p_q(x) into q). A failed reuse contributes 0 to that pixel and its
-//    sampler drops out of the weights' denominators.
+//    sampler drops out of the weights' denominators. A light sample occluded from the
+//    base's or the offset's vertex counts as a failed reuse of that NEE path, as a
+//    blocked reconnection fails a BSDF path, so both techniques see the same samplers.
 // Directly visible emitters (1 segment) go to each pixel from its own base walk only.
 // Exactness of the tile-constant weight needs R_pm(R_qp x) = R_qm x (the paper's Sec. 3.1
 // bijectivity argument): the reconnection shift has it when every shift of a walk takes the
