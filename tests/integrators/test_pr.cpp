@@ -7,6 +7,10 @@
 //      below the shift threshold (half-vector copies; tiles straddling glossy and diffuse
 //      pixels) and a glass box. The uniform weight 1/N and a reuse function whose shifts
 //      do not compose (PrFaults::any_class) must break the sums.
+//      And both techniques of a pixel see the same samplers: for every BSDF path that
+//      ends on an emitter, the pixel's weight sum from that walk equals the one from its
+//      NEE twin (the walk whose light sample drew the same point); rejects occluded light
+//      samples counted as reusable (PrFaults::occluded_nee, found by (2) first).
 //  (2) [stat] unbiased: the image mean and the 4x4-pixel block means of pr agree with the
 //      reference PT (Welch t-tests over independent renders with fixed seeds; mean at 1%,
 //      blocks Sidak-corrected to 1% family-wise; thresholds from the run-to-run variances)
@@ -15,9 +19,6 @@
 //      same test rejects pr with the reuse Jacobians forced to 1, with the tile's MIS
 //      replaced by the uniform weight 1/N, and (environment) with occluded light samples
 //      counted as reusable while blocked BSDF reconnections fail.
-// (1) checks each technique's weights among walks of that technique; that the NEE and
-// the BSDF weights of one path see the same samplers is checked only through (2)'s
-// environment scene, which caught it.
 // Directly seen emitters are hidden on both sides (pr never reuses them: each pixel
 // adds its own, as PT), so the tests look at what the reuse estimates. About 20 s on 2 cores.
 #include <catch2/catch.hpp>
@@ -27,6 +28,8 @@
 #include "integrators/integrator.h"
 #include "integrators/pr/pr_integrator.h"
 #include "integrators/pr/pr_tracer.h"
+#include "pathspace/classify.h"
+#include "pathspace/scatter.h"
 #include "scene/bsdfs.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/test_scenes.h"
@@ -163,8 +166,70 @@ SumStats weight_sums(const scene::Scene& s, const PrSettings& settings, int tile
   return out;
 }
 
+// The NEE twin of the BSDF path y[0..k] (y[k] emits): y[0..k-1] with the light sample at
+// y[k-1] set to the point (or direction) y[k], as if light sampling had drawn it.
+pathspace::Path nee_twin(const scene::Scene& s, const pathspace::Path& y, int k, float threshold) {
+  pathspace::Path t = y;
+  t.vertices.resize(size_t(k));
+  t.nee.resize(size_t(k));
+  const pathspace::Vertex &v = y[k - 1], &e = y[k];
+  pathspace::LightSample& l = t.nee[size_t(k - 1)];
+  l = pathspace::LightSample();
+  l.valid = l.visible = true;
+  l.infinite = e.kind == pathspace::VertexKind::environment;
+  l.emitter = l.infinite ? s.environment() : e.hit.emitter;
+  l.w = l.infinite ? e.wo_world : Vec3((e.p() - v.p()).normalized());
+  l.dist = l.infinite ? kInfinity : (e.p() - v.p()).norm();
+  l.p = l.infinite ? Vec3(v.p() + l.w) : e.p();
+  l.n = e.hit.ng;
+  l.connectable = pathspace::is_connectable(s, l.emitter, threshold);
+  l.radiance = e.emission;
+  l.wo = v.wo;
+  l.f_cos = v.f_cos;
+  l.bsdf_pdf = v.pdf;
+  l.pdf = pathspace::light_pdf(s, v.p(), e);
+  return t;
+}
+
+// For every BSDF path of the tile's walks that ends on an emitter: pixel p's weight sum
+// w_NEE + w_BSDF from the BSDF walk's fan and from its NEE twin's fan (relative difference).
+SumStats twin_sums(const scene::Scene& s, const PrSettings& settings, int tiles) {
+  const PrTracer tracer(s, settings, kDepth);
+  std::vector<pathspace::Path> bases;
+  ReuseFan fan, fan_t;
+  PrCounters counters;
+  SumStats out;
+  for (int it = 0; it < tiles; ++it) {
+    ReuseTile tile;
+    tile.x0 = it % 2 ? 1 : 7;
+    tile.y0 = it % 2 ? 1 : 9;
+    tile.x1 = tile.x0 + 6;
+    tile.y1 = tile.y0 + 6;
+    core::Rng rng(78, uint64_t(it));
+    tracer.build_bases(tile, rng, bases);
+    for (int p = 0; p < tile.pixels(); ++p) {
+      const pathspace::Path& y = bases[size_t(p)];
+      tracer.reuse(y, p, tile, fan, counters);
+      for (int k = 2; k < y.size(); ++k) {
+        const pathspace::Vertex& v = y[k - 1];
+        if (is_black(y[k].emission) || !v.hit.bsdf || v.hit.bsdf->is_purely_delta() || v.delta_lobe()) continue;
+        const pathspace::Path t = nee_twin(s, y, k, settings.shift_threshold);
+        if (!(t.nee[size_t(k - 1)].pdf > 0.0)) continue;
+        tracer.reuse(t, p, tile, fan_t, counters);
+        const double a = fan.own_weight_sum(ReuseFan::key(k, false));
+        const double b = fan_t.own_weight_sum(ReuseFan::key(k, true));
+        ++out.paths;
+        const double e = std::abs(a - b) / std::max(a, b);
+        out.worst = std::max(out.worst, e);
+        out.off += e > 1e-2;
+      }
+    }
+  }
+  return out;
+}
+
 SumStats print_sums(const char* what, const SumStats& st) {
-  std::printf("pr MIS sums [%s]: %lld concrete paths, worst |sum - 1| %.2e, %lld off by > 1e-2\n", what,
+  std::printf("pr MIS [%s]: %lld concrete paths, worst deviation %.2e, %lld off by > 1e-2\n", what,
               static_cast<long long>(st.paths), st.worst, static_cast<long long>(st.off));
   return st;
 }
@@ -183,6 +248,25 @@ TEST_CASE("pr: the tile's balance weights sum to one over its samplers", "[unit]
     // (float pdf_direct) leave up to ~2e-3 on a few NEE paths.
     CHECK(st.paths > 1000);
     CHECK(st.worst < 1e-2);
+  }
+  // The NEE and the BSDF technique of a pixel see the same samplers: p's weight sum for
+  // a path ending on an emitter is the same from the BSDF walk and from its NEE twin.
+  const auto env = test::env_glossy(nullptr, kRes);
+  for (const auto& [name, s] : {std::pair{"NEE vs BSDF, diffuse box", diffuse.get()},
+                                std::pair{"NEE vs BSDF, environment", env.get()}}) {
+    INFO(name);
+    const SumStats st = print_sums(name, twin_sums(*s, settings, 40));
+    CHECK(st.paths > 40);
+    // At most 0.5% off: the shift tests a reconnection to the environment with a traced
+    // ray and an offset light sample with a shadow ray (reconnection_shift.cpp), which
+    // can disagree at grazing angles (1 of 929 paths here: 9% off, one pixel of 36 seen
+    // by the BSDF walk only).
+    CHECK(st.off * 200 <= st.paths);
+  }
+  {
+    PrSettings bad = settings;
+    bad.faults.occluded_nee = true;  // occluded light samples counted, blocked reconnections not
+    CHECK(print_sums("NEE vs BSDF, environment, fault: occluded NEE counted", twin_sums(*env, bad, 40)).off > 0);
   }
   // Defects: each must move some sum away from 1.
   PrSettings bad = settings;
