@@ -21,4 +21,18 @@ inline double symmetric_power_weight(double other_base, double offset_same, doub
   return 1.0 / s;
 }
 
+// Path reusing over a tile of pixels (Bauszat et al. 2017, Eq. 3 in the form of Eq. 7):
+// the balance heuristic over every sampler of the tile -- each pixel m's two techniques
+// (NEE, BSDF) -- for a concrete path x that pixel q's technique `self` sampled and the
+// reuse function R shifted to the other pixels:
+//   w_q,self(x) = p_q,self(x) / (p_q,self(x) + p_q,other(x) + sum_m sum_t p_m,t(R_qm x) |R'_qm|)
+// with the sum over the pixels m != q whose shift produced this concrete path (a failed
+// reuse has no sampler that could produce it and drops out; the caller must make "failed"
+// mean the same for both techniques of a path, e.g. an occluded light sample as a failed
+// NEE reuse when a blocked reconnection fails the BSDF one). The weight depends on x and
+// its shifts only, so it is the same for every pixel x is reused in (constant over the
+// tile). Arguments are ratios to p_q,self(x): other_base = p_q,other / p_self,
+// offsets = sum over m of (p_m,self + p_m,other)(R x) |R'| / p_self.
+inline double tile_balance_weight(double other_base, double offsets) { return 1.0 / (1.0 + other_base + offsets); }
+
 }  // namespace dp::gradients

@@ -55,7 +55,7 @@ void PairTerms::prepare_offset(const ShiftResult* res) {
   }
 }
 
-const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_segments) {
+const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_segments, bool keep_zero) {
   const pathspace::Path& base = *m_base;
   const int n = base.size();
   prepare_offset(res);
@@ -68,6 +68,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     PairTerm t;
     t.segments = k + 1;
     t.nee = true;
+    t.base_visible = bl.visible;
     if (bl.visible) {
       t.fb = m_beta[size_t(k)] * (bl.f_cos * bl.radiance).cast<double>() / bl.pdf;
       t.b_other = bl.bsdf_pdf / bl.pdf;
@@ -76,12 +77,13 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     if (t.has_offset) {
       const pathspace::LightSample& ol = res->path.nee[size_t(k)];
       const double J = res->nee_jacobian[size_t(k)];
+      t.offset_visible = ol.visible;
       t.c = m_ratio[size_t(k)] * J * ol.pdf / bl.pdf;
       t.d = ol.visible ? m_ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
       t.jacobian = m_jprefix[size_t(k)] * J;
       if (ol.visible) t.fo = m_beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
     }
-    if ((t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
+    if (!keep_zero && (t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
     m_terms.push_back(t);
   }
   // BSDF paths (x_0..x_k) whose last vertex may emit: k segments. The light densities (for
@@ -91,7 +93,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     const Vertex& bv = base[k];
     const bool has_offset = k < alive;
     const bool base_emits = !is_black(bv.emission);
-    if (!base_emits && !(has_offset && !is_black(res->path[k].emission))) continue;
+    if (!keep_zero && !base_emits && !(has_offset && !is_black(res->path[k].emission))) continue;
     PairTerm t;
     t.segments = k;
     t.has_offset = has_offset;
@@ -107,7 +109,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
       t.jacobian = m_jprefix[size_t(k)];
       t.fo = m_beta_o[size_t(k)] * ov.emission.cast<double>();
     }
-    if ((t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
+    if (!keep_zero && (t.fb == 0.0).all() && (t.fo == 0.0).all()) continue;
     m_terms.push_back(t);
   }
   return m_terms;

@@ -30,6 +30,9 @@ struct PairTerm {
   double b_other = 0, c = 0, d = 0;
   double jacobian = 1;
   bool has_offset = false;  // the shift produced this concrete path (fo may still be 0: not visible)
+  // NEE paths: the light sample is visible from the base's / the offset's vertex (BSDF
+  // paths: true; a BSDF path exists only where its last segment is unoccluded).
+  bool base_visible = true, offset_visible = true;
 
   double base_strategy_weight() const { return 1.0 / (1.0 + b_other * b_other); }
   double offset_strategy_weight() const { return c > 0.0 ? c * c / (c * c + d * d) : 0.0; }
@@ -44,7 +47,10 @@ class PairTerms {
   // Every concrete path of the base (and of `offset`, null = no offset, e.g. a neighbour
   // outside the image) with at least `min_segments` segments and a nonzero base or
   // offset value. The vector is reused by the next call.
-  const std::vector<PairTerm>& terms(const ShiftResult* offset, int min_segments);
+  // `keep_zero`: also the concrete paths whose base and offset values are both zero, with
+  // their densities (c, d): a balance heuristic over many pixels (path reusing, Bauszat
+  // et al. 2017, Eq. 3) counts a sampler's density even where its own path carries no light.
+  const std::vector<PairTerm>& terms(const ShiftResult* offset, int min_segments, bool keep_zero = false);
 
  private:
   void prepare_offset(const ShiftResult* offset);

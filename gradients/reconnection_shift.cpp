@@ -182,6 +182,10 @@ ShiftStatus ReconnectionShift::trace_next(const Path& base, int k, ShiftResult& 
     nv.wi = hit->shading.to_local(-ray.d);
   }
   if (check_inverse && nv.connectable) return ShiftStatus::not_invertible;
+  if (m_opt.match_classes && nv.connectable != bn.connectable) {
+    out.class_mismatch = true;
+    return ShiftStatus::not_invertible;
+  }
   nv.emission = pathspace::emitted(m_scene, nv, -ray.d);
   o.append(nv);
   return ShiftStatus::ok;

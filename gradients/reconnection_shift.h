@@ -34,6 +34,12 @@ struct ReconnectionShiftOptions {
   float threshold = 0.001f;  // pathspace::kDefaultShiftThreshold
   bool half_vector_enabled = true;
   JacobianFault fault = JacobianFault::none;  // tests' negative controls only (shift.h)
+  // Path reusing (Bauszat et al. 2017, Sec. 3.1): every offset vertex traced before the
+  // reconnection must have its base vertex's class (connectable or not), else the shift
+  // fails as not_invertible (ShiftResult::class_mismatch set). Then every shift of a walk
+  // takes the same strategy at every vertex, whichever pixel it starts from, so shifts
+  // compose (R_pm(R_qp x) = R_qm x), which the tile-constant MIS weights of Eq. 7 need.
+  bool match_classes = false;
 };
 
 class ReconnectionShift : public Shift {

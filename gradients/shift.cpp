@@ -44,6 +44,7 @@ void ShiftResult::reset(int n) {
   walk_iterations = 0;
   walk_traces = 0;
   declared = 0;
+  class_mismatch = false;
 }
 
 double ShiftResult::prefix_jacobian(int k) const {

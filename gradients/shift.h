@@ -84,6 +84,9 @@ struct ShiftResult {
   // Vertices declared specular by the incremental manifold walk (incremental_shift.h; 0:
   // none, the offset reconnected as the hybrid shift does).
   int declared = 0;
+  // The shift failed because an offset vertex's class differed from its base vertex's
+  // (ReconnectionShiftOptions::match_classes; status not_invertible).
+  bool class_mismatch = false;
 
   void reset(int n);
   bool vertex_ok(int k) const { return k < alive; }

@@ -7,7 +7,8 @@
 namespace dp::gradients {
 
 std::unique_ptr<Shift> make_shift(const scene::Scene& scene, const ShiftChoice& c) {
-  const ReconnectionShiftOptions ro{c.threshold, scene.caps().has_glossy || scene.caps().has_specular, c.fault};
+  const ReconnectionShiftOptions ro{c.threshold, scene.caps().has_glossy || scene.caps().has_specular, c.fault,
+                                    c.match_classes};
   std::shared_ptr<const IncrementalManifoldShift> inc;
   if (c.incremental && c.kind != "identity") {
     IncrementalShiftOptions io;

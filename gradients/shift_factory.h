@@ -27,6 +27,7 @@ struct ShiftChoice {
   // Must be symmetric in its two points (symmetric_threshold).
   OcclusionDecision incremental;
   int incremental_max_declared = 1;  // IncrementalShiftOptions::max_declared
+  bool match_classes = false;  // ReconnectionShiftOptions::match_classes (path reusing)
 };
 
 // Throws dp::ValueError for an unknown kind.

@@ -11,6 +11,7 @@
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
+#include "integrators/pr/pr_integrator.h"
 #include "integrators/vcm/vcm_integrator.h"
 
 namespace dp::integrators {
@@ -33,6 +34,7 @@ const std::vector<Entry>& registry() {
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
+      {"pr", make<PrIntegrator>, "generalized path reusing over jittered tiles (Bauszat et al. 2017, Sec. 3.1, Eq. 7)"},
       {"gbdpt", make<GbdptIntegrator>, "gradient-domain bidirectional path tracing (Manzi et al. 2015), L1/L2 reconstruction"},
       {"gpm", make<GpmIntegrator>, "gradient-domain photon mapping (G-PM as Sun et al. 2017 implement it), L1/L2 reconstruction"},
       {"gvcm", make<GvcmIntegrator>, "gradient-domain vertex connection and merging (Sun et al. 2017), L1/L2 reconstruction"},
