@@ -39,7 +39,7 @@ const std::vector<Entry>& registry() {
       {"gpm", make<GpmIntegrator>, "gradient-domain photon mapping (G-PM as Sun et al. 2017 implement it), L1/L2 reconstruction"},
       {"gvcm", make<GvcmIntegrator>, "gradient-domain vertex connection and merging (Sun et al. 2017), L1/L2 reconstruction"},
       {"mlt", make<MltIntegrator>, "primary-sample-space Metropolis light transport (Kelemen et al. 2002)"},
-      {"memlt", make_memlt, "manifold exploration MLT (Jakob & Marschner 2012): path-space MLT with bidirectional, lens, caustic and manifold mutations"},
+      {"memlt", make_memlt, "manifold exploration MLT (Jakob & Marschner 2012): path-space MLT with bidirectional, lens, caustic, multi-chain and manifold mutations"},
       {"gdmlt", make<GdmltIntegrator>, "gradient-domain MLT on the extended path space (Manzi et al. 2014)"},
   };
   return kRegistry;
