@@ -1,5 +1,6 @@
-// `mlt --set mutations=path` (path-space MLT: Veach's bidirectional mutation alone, and
-// with the lens and caustic perturbations, `veach`) against the reference path tracer
+// `mlt --set mutations=path` (path-space MLT: Veach's bidirectional mutation alone, each
+// perturbation with it (the bidirectional mutation keeps the chain ergodic), `veach` and
+// `memlt`) against the reference path tracer
 // on two small lit boxes: one with
 // a rough conductor sphere (diffuse and glossy vertices), one adding a smooth glass sphere
 // (Dirac chains: refraction in and out, caustics on the floor). K independent runs of
@@ -92,6 +93,8 @@ TEST_CASE("mlt mutations=path: the bidirectional mutation and the perturbations 
     const auto s = test::lit_box(rough_conductor(), scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx),
                                  kRes);
     const test::BlockStats pt = test::path_block_stats(*s, kRuns, 64, kDepth, kBlock);
+    CHECK(worst("glossy + glass box", *s, pt, {"bidir + lens", "bidir,lens"}) < 1.0);
+    CHECK(worst("glossy + glass box", *s, pt, {"bidir + caustic", "bidir,caustic"}) < 1.0);
     CHECK(worst("glossy + glass box", *s, pt, {"veach", "veach"}) < 1.0);
     CHECK(worst("glossy + glass box", *s, pt, {"bidir + manifold", "bidir,manifold"}) < 1.0);
     CHECK(worst("glossy + glass box", *s, pt, {"memlt", "memlt"}) < 1.0);
