@@ -6,11 +6,7 @@ set -u
 bin=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {  # check DESCRIPTION CONDITION...
-  local what=$1; shift
-  if "$@"; then echo "ok   - $what"; else echo "FAIL - $what"; fail=1; fi
-}
+source "$(dirname "$0")/harness.sh"  # check, $fail
 
 # 1. A render writes EXR, PNG and a JSON sidecar with the resolved settings.
 "$bin" render scenes/cornell.yaml --spp 2 --threads 2 --quiet --set rr_depth=3 --out "$tmp/c.exr" 2>"$tmp/err"

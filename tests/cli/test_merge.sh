@@ -10,11 +10,7 @@ set -u
 bin=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {  # check DESCRIPTION CONDITION...
-  local what=$1; shift
-  if "$@"; then echo "ok   - $what"; else echo "FAIL - $what"; fail=1; fi
-}
+source "$(dirname "$0")/harness.sh"  # check, $fail
 # json_check FILE PYTHON-EXPRESSION (on `j`, the parsed sidecar)
 json_check() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" 2>/dev/null; }
 # fails_with MESSAGE-REGEX COMMAND...: exit 1 and exactly one stderr line matching.

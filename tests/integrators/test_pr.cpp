@@ -125,6 +125,16 @@ struct SumStats {
 
 // Over every base walk of `tiles` samples of the 6x6 tiles at (1, 1) and (7, 9) (the
 // latter straddles the left sphere's silhouette).
+// The 6x6 tile of test iteration `it`: two positions, alternating.
+ReuseTile test_tile(int it) {
+  ReuseTile tile;
+  tile.x0 = it % 2 ? 1 : 7;
+  tile.y0 = it % 2 ? 1 : 9;
+  tile.x1 = tile.x0 + 6;
+  tile.y1 = tile.y0 + 6;
+  return tile;
+}
+
 SumStats weight_sums(const scene::Scene& s, const PrSettings& settings, int tiles) {
   const PrTracer tracer(s, settings, kDepth);
   std::vector<pathspace::Path> bases;
@@ -133,11 +143,7 @@ SumStats weight_sums(const scene::Scene& s, const PrSettings& settings, int tile
   gradients::ShiftResult r;
   SumStats out;
   for (int it = 0; it < tiles; ++it) {
-    ReuseTile tile;
-    tile.x0 = it % 2 ? 1 : 7;
-    tile.y0 = it % 2 ? 1 : 9;
-    tile.x1 = tile.x0 + 6;
-    tile.y1 = tile.y0 + 6;
+    const ReuseTile tile = test_tile(it);
     const int npix = tile.pixels(), tw = tile.width();
     core::Rng rng(77, uint64_t(it));
     tracer.build_bases(tile, rng, bases);
@@ -200,11 +206,7 @@ SumStats twin_sums(const scene::Scene& s, const PrSettings& settings, int tiles)
   PrCounters counters;
   SumStats out;
   for (int it = 0; it < tiles; ++it) {
-    ReuseTile tile;
-    tile.x0 = it % 2 ? 1 : 7;
-    tile.y0 = it % 2 ? 1 : 9;
-    tile.x1 = tile.x0 + 6;
-    tile.y1 = tile.y0 + 6;
+    const ReuseTile tile = test_tile(it);
     core::Rng rng(78, uint64_t(it));
     tracer.build_bases(tile, rng, bases);
     for (int p = 0; p < tile.pixels(); ++p) {
