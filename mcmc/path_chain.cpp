@@ -19,8 +19,11 @@ void PathChainCounters::merge(const PathChainCounters& o) {
   stuck += o.stuck;
 }
 
-PathChain::PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index)
-    : m_mutators(std::move(mutators)), m_rng(seed, core::mix64(0x9A7C'0000'0000ull + index)) {
+PathChain::PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index,
+                     std::unique_ptr<PathTargetFactor> factor)
+    : m_mutators(std::move(mutators)),
+      m_factor(std::move(factor)),
+      m_rng(seed, core::mix64(0x9A7C'0000'0000ull + index)) {
   m_counters.mutators.resize(m_mutators.size());
 }
 
@@ -38,7 +41,7 @@ double PathChain::selection(const PathState& s, size_t i) const {
 
 PathStep PathChain::step() {
   PathStep st;
-  st.current = {m_x.colour(), m_x.raster};
+  st.current = PathSplat::of(m_x);
   // Pick a suitable mutation with probability proportional to its weight.
   double total = 0.0;
   for (const auto& m : m_mutators) total += m.mutator->suitable(m_x) ? m.weight : 0.0;
@@ -65,14 +68,21 @@ PathStep PathChain::step() {
   st.status = status;
   if (status != ProposalStatus::ok) return st;
   const double sx = selection(m_x, pick), sy = selection(m_y, pick);
-  const double a = std::min(1.0, mut.ratio(m_x, m_y, rec) * sy / sx);
-  if (!std::isfinite(a) || a < 0.0) {
+  double r = mut.ratio(m_x, m_y, rec) * sy / sx;
+  if (m_factor) {  // the extended target: u_pair redrawn (symmetric), the factor ratio
+    m_y.u_pair = m_rng.uniform_double();
+    m_factor->evaluate(m_y);
+    r *= m_x.factor > 0.0 ? m_y.factor / m_x.factor : 1.0;
+  }
+  // NaN must not pass as min(1, NaN) = 1; an infinite ratio is an accept.
+  if (std::isnan(r) || r < 0.0) {
     ++m_counters.invalid;
     return st;
   }
+  const double a = std::min(1.0, r);
   st.a = a;
   mc.acceptance_sum += a;
-  st.proposed = {m_y.colour(), m_y.raster};
+  st.proposed = PathSplat::of(m_y);
   if (m_rng.uniform_double() < a) {
     std::swap(m_x, m_y);
     st.accepted = true;

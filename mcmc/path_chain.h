@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "mcmc/mutator.h"
@@ -31,10 +32,27 @@ struct PathChainCounters {
   void merge(const PathChainCounters& o);
 };
 
-// One state as splatted: F / lum F (luminance 1) at a raster position.
+// One state as splatted: F / lum F (luminance 1) at a raster position; on an extended
+// target also the state's factor and pair sample (path_state.h: the caller divides both
+// colour and pair by the factor).
 struct PathSplat {
   Rgb colour = Rgb::Zero();
   Vec2 raster{0, 0};
+  double factor = 1;
+  Rgb pair = Rgb::Zero();
+  int64_t pair_row = -1;
+  static PathSplat of(const PathState& s) { return {s.colour(), s.raster, s.factor, s.pair, s.pair_row}; }
+};
+
+// An extended target over (path, u_pair): f = lum F(x) * factor(x, u_pair) (e.g. GD-MLT's,
+// path_gradient.h). u_pair is uniform on [0, 1) and redrawn independently at every
+// proposal, a symmetric move of that coordinate, so the acceptance only gains the factor
+// ratio. evaluate() sets factor (>= 0; NaN marks an invalid state), pair and pair_row.
+// One per chain (it may keep scratch memory).
+class PathTargetFactor {
+ public:
+  virtual ~PathTargetFactor() = default;
+  virtual void evaluate(PathState& s) = 0;
 };
 
 struct PathStep {
@@ -52,17 +70,22 @@ struct WeightedMutator {
 
 class PathChain {
  public:
-  PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index);
+  // `factor`: the extended target's (nullptr: the primal target lum F); owned by the chain.
+  PathChain(std::vector<WeightedMutator> mutators, uint64_t seed, uint64_t index,
+            std::unique_ptr<PathTargetFactor> factor = nullptr);
+  // x must carry its factor already when the chain has one (the seeding resamples by it).
   void start(const PathState& x);
   PathStep step();
   const PathState& current() const { return m_x; }
   const PathChainCounters& counters() const { return m_counters; }
+  const PathTargetFactor* factor() const { return m_factor.get(); }
 
  private:
   // Selection probability of mutator i on s (0 if it does not apply).
   double selection(const PathState& s, size_t i) const;
 
   std::vector<WeightedMutator> m_mutators;
+  std::unique_ptr<PathTargetFactor> m_factor;
   core::Rng m_rng;
   PathState m_x, m_y;
   PathSides m_sides;

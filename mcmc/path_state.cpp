@@ -17,18 +17,23 @@ namespace {
 // The factor a walk in `mode` multiplies its throughput by when it scatters at surface
 // vertex v, arriving along wi and leaving along wo (both away from v): f |cos wo| / pdf
 // of the smooth lobes, or the Dirac lobe's sample weight (f |cos| / its probability).
-// 0 on a sidedness violation of either direction (as the walks and connect()).
-Rgb step_weight(const BidirVertex& v, const Vec3& wi, const Vec3& wo, TransportMode mode) {
+// 0 on a sidedness violation of either direction (as the walks and connect()). `pdf`
+// receives the density of wo as the walk samples it (solid angle; a Dirac lobe's
+// selection probability), 0 where the weight is 0.
+Rgb step_weight(const BidirVertex& v, const Vec3& wi, const Vec3& wo, TransportMode mode, float* pdf_out = nullptr) {
+  if (pdf_out) *pdf_out = 0.0f;
   if (v.kind != BidirKind::surface || !v.bsdf) return Rgb::Zero();
   const Vec3 wi_l = v.sp.shading.to_local(wi), wo_l = v.sp.shading.to_local(wo);
   if (!(v.sp.ng.dot(wi) * wi_l.z() > 0.0f) || !(v.sp.ng.dot(wo) * wo_l.z() > 0.0f)) return Rgb::Zero();
   const scene::BsdfContext ctx{v.sp.uv, mode};
   if (v.delta) {
     const auto bs = pathspace::sample_dirac_lobe(*v.bsdf, ctx, wi_l, v.lobe, v.u_lobe);
+    if (bs && pdf_out) *pdf_out = bs->pdf;
     return bs ? bs->weight : Rgb::Zero();
   }
   float pdf = 0.0f;
   const Rgb f = v.bsdf->eval_pdf(ctx, wi_l, wo_l, pdf);
+  if (pdf_out) *pdf_out = pdf;
   return pdf > 0.0f ? Rgb(f * (std::abs(wo_l.z()) / pdf)) : Rgb::Zero();
 }
 
@@ -52,7 +57,10 @@ void light_side(const scene::Scene& scene, const std::vector<BidirVertex>& v, st
   }
 }
 
-// The camera walk's copy (x_K first): We / p = 1 at z_1 (bidir_vertex.h).
+// The camera walk's copy (x_K first): We / p = 1 at z_1 (bidir_vertex.h). Each surface
+// vertex also gets what a camera walk that sampled these directions would have recorded
+// (pdf_out, weight_out, rr_out = 1: no roulette in path space), as the shifts replay it
+// (gradients/bidir_shift.h).
 void camera_side(const std::vector<BidirVertex>& v, std::vector<BidirVertex>& out) {
   out.assign(v.rbegin(), v.rend());
   const size_t n = out.size();
@@ -61,9 +69,15 @@ void camera_side(const std::vector<BidirVertex>& v, std::vector<BidirVertex>& ou
   if (n < 2) return;
   out[1].beta = Rgb::Ones();
   for (size_t j = 1; j < n; ++j) {
-    out[j].wi = direction_between(out[j], out[j - 1]);
-    if (j + 1 < n) out[j + 1].beta = out[j].beta * step_weight(out[j], out[j].wi, direction_between(out[j], out[j + 1]),
-                                                               TransportMode::radiance);
+    BidirVertex& z = out[j];
+    z.wi = direction_between(z, out[j - 1]);
+    z.rr_out = 1.0f;
+    z.pdf_out = 0.0f;
+    z.weight_out = Rgb::Zero();
+    if (j + 1 < n) {
+      z.weight_out = step_weight(z, z.wi, direction_between(z, out[j + 1]), TransportMode::radiance, &z.pdf_out);
+      out[j + 1].beta = z.beta * z.weight_out;
+    }
   }
   // The light endpoint as the camera walk finds it: an area light is a surface hit.
   BidirVertex& last = out[n - 1];
@@ -78,6 +92,11 @@ Vec3 direction_between(const BidirVertex& from, const BidirVertex& to) {
   return (to.sp.p - from.sp.p).normalized();
 }
 
+void path_sides(const scene::Scene& scene, const std::vector<BidirVertex>& v, PathSides& sides) {
+  light_side(scene, v, sides.light);
+  camera_side(v, sides.camera);
+}
+
 bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides) {
   const int K = state.depth();
   state.inv_c.assign(size_t(std::max(K + 1, 0)), 0.0);
@@ -90,8 +109,7 @@ bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides
   const auto raster = cam.raster_of(eye.infinite() ? Vec3(cam.position() + eye.sp.ng) : eye.sp.p);
   if (!raster) return false;
   state.raster = *raster;
-  light_side(scene, state.v, sides.light);
-  camera_side(state.v, sides.camera);
+  path_sides(scene, state.v, sides);
   pathspace::MisConfig unweighted;
   unweighted.unweighted = true;
   for (int s = 0; s <= K; ++s) {

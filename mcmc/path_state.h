@@ -33,6 +33,14 @@ struct PathState {
   Rgb c_ref = Rgb::Zero();    // C_ref (what BDPT's strategy `ref` adds for this path)
   Vec2 raster{0, 0};          // where the eye edge x_{K-1} x_K meets the image
   bool nonfinite = false;     // a strategy's value was NaN or infinite (the path is refused)
+  // Extended path space (gdmlt, mcmc/path_gradient.h): the target is lum F * factor, with
+  // u_pair a uniform coordinate the chain redraws at every proposal (it picks the
+  // neighbour j); pair = the splatted pair sample per lum F, into gradient row pair_row.
+  // Unused (factor 1) by the primal chains.
+  double u_pair = 0;
+  double factor = 1;
+  Rgb pair = Rgb::Zero();
+  int64_t pair_row = -1;
 
   int depth() const { return int(v.size()) - 1; }
   Rgb colour() const { return c_ref / luminance(c_ref); }  // F / lum F, the splat's colour
@@ -50,6 +58,11 @@ struct PathSides {
 // non-zero contribution, the eye edge misses the image, or a value is not finite
 // (`nonfinite`: a NaN from a BSDF or light must never reach a chain).
 bool evaluate_path(const scene::Scene& scene, PathState& state, PathSides& sides);
+
+// Fills `sides` for the path's vertices v (x_0 .. x_K) without evaluating any strategy:
+// the light walk's copy and the camera walk's (with each vertex's pdf_out / weight_out as
+// a camera walk through these vertices records them; rr_out = 1).
+void path_sides(const scene::Scene& scene, const std::vector<pathspace::BidirVertex>& v, PathSides& sides);
 
 // Unit direction from vertex `from` toward vertex `to` (along a light at infinity's direction).
 Vec3 direction_between(const pathspace::BidirVertex& from, const pathspace::BidirVertex& to);

@@ -9,6 +9,7 @@
 #include "gradients/shift_factory.h"
 #include "gradients/symmetric_gradient.h"
 #include "integrators/direct_pass.h"
+#include "integrators/gdmlt/gdmlt_path.h"
 #include "integrators/gradient_output.h"
 #include "integrators/mcmc_driver.h"
 #include "integrators/tile_scheduler.h"
@@ -21,9 +22,7 @@
 namespace dp::integrators {
 
 namespace {
-// Splat buffers (W H values each): the primal, the density, then the kernel's rows spread
-// over as many buffers as they need (row r: buffer kRows + r / (W H), entry r % (W H)).
-enum Layer { kPrimal = 0, kDensity = 1, kRows = 2 };
+constexpr int kPrimal = kGdmltPrimal, kDensity = kGdmltDensity, kRows = kGdmltRows;  // gdmlt_path.h
 
 // A feature buffer (kernels_adaptive/features.h, values in [0, 1]) as an image layer.
 template <typename T>
@@ -36,6 +35,53 @@ core::Image feature_image(const std::vector<T>& v, int w, int h) {
       img[i] = Rgb(float(v[i][0]), float(v[i][1]), float(v[i][2]));
   }
   return img;
+}
+// The primary-sample-space chains (McmcDriver over mcmc::GradientTarget).
+void run_pss_chains(const scene::Scene& scene, const GdmltSettings& st, const RenderOptions& options,
+                    const RenderOptions& chain_opt, const gradients::ShiftChoice& choice,
+                    const kernels_adaptive::PairKernel& kernel, int layers, DirectPass& direct, RenderResult& result,
+                    ChainRunResult& run, double& scale, mcmc::GradientTargetCounters& target_sum) {
+  core::Timer timer;
+  const int w = scene.camera().width(), h = scene.camera().height();
+  const int64_t pixels = int64_t(w) * int64_t(h);
+  const std::unique_ptr<gradients::Shift> shift = gradients::make_shift(scene, choice);
+  mcmc::GradientTargetOptions to;
+  to.walk = pathspace::WalkOptions{options.max_depth, st.rr_depth, st.nee, st.shift_threshold};
+  to.alpha = st.alpha;
+  to.gradient = {st.mwgi, st.mwgi_threshold};
+  // Bootstrap over the unit cube of (u_j, raster, path), then the chains.
+  McmcConfig cfg;
+  cfg.bootstrap = st.bootstrap;
+  cfg.chains = st.chains;
+  cfg.large_step_b = st.large_step_b;
+  cfg.chain.large_step_prob = st.large_step_prob;
+  cfg.chain.redraw_first = 1;  // the neighbour coordinate (gradient_target.h)
+  cfg.layers = layers;
+  McmcDriver driver([&] { return std::make_unique<mcmc::GradientTarget>(scene, *shift, kernel, to); }, cfg, scene,
+                    options);
+  auto pixel_of = [&](const Vec2& r) {
+    return int64_t(std::clamp(int(r.y()), 0, h - 1)) * w + std::clamp(int(r.x()), 0, w - 1);
+  };
+  RenderOptions budget = chain_opt;  // the bootstrap used part of it
+  if (chain_opt.time_budget > 0) budget.time_budget = std::max(1e-3, chain_opt.time_budget - timer.seconds());
+  run = driver.run(
+      budget, "gdmlt",
+      [&](const mcmc::TargetValue& v, double weight, SplatList& out) {
+        const double k = weight / v.f;
+        if (!is_black(v.value)) out.add(kPrimal, pixel_of(v.raster), v.value.cast<double>() * k);
+        if (v.gradient_row >= 0 && !is_black(v.gradient))
+          out.add(kRows + int(v.gradient_row / pixels), v.gradient_row % pixels, v.gradient.cast<double>() * k);
+      },
+      [&](const mcmc::Step& s, SplatList& out) {  // the paper's Fig. 9: mutations per pixel
+        out.add(kDensity, pixel_of((s.accepted ? s.proposed : s.current).raster), Rgbd::Ones());
+      },
+      [&](int64_t rounds) {
+        if (st.direct_spp == 0) direct.render(int(rounds - direct.spp_done()));
+      });
+  for (int c = 0; c < driver.chains(); ++c)  // in chain order: deterministic
+    target_sum.merge(static_cast<mcmc::GradientTarget&>(driver.target(c)).counters());
+  scale = driver.scale();
+  driver.report(result, "gdmlt");
 }
 }  // namespace
 
@@ -83,7 +129,8 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   // INCMW: the screen-space AO map first (only then), the symmetric decision from it.
   std::unique_ptr<gradients::AoMap> ao;
   double ao_seconds = 0;
-  if (m_settings.incmw && m_settings.shift != "identity") {
+  const bool path_space = m_settings.mutations == "path";
+  if (m_settings.incmw && m_settings.shift != "identity" && !path_space) {
     core::Timer at;
     gradients::AoMapSettings as;
     as.radius = float(m_settings.ao_radius);
@@ -96,46 +143,20 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
         gradients::symmetric_threshold([map](const Vec3& p) { return map->lookup(p); }, float(m_settings.ao_threshold));
     ao_seconds = at.seconds();
   }
-  const std::unique_ptr<gradients::Shift> shift = gradients::make_shift(scene, choice);
-  mcmc::GradientTargetOptions to;
-  to.walk = pathspace::WalkOptions{options.max_depth, m_settings.rr_depth, m_settings.nee, m_settings.shift_threshold};
-  to.alpha = m_settings.alpha;
-  to.gradient = {m_settings.mwgi, m_settings.mwgi_threshold};
-
-  // Bootstrap over the unit cube of (u_j, raster, path), then the chains.
-  McmcConfig cfg;
-  cfg.bootstrap = m_settings.bootstrap;
-  cfg.chains = m_settings.chains;
-  cfg.large_step_b = m_settings.large_step_b;
-  cfg.chain.large_step_prob = m_settings.large_step_prob;
-  cfg.chain.redraw_first = 1;  // the neighbour coordinate (gradient_target.h)
-  cfg.layers = kRows + row_buffers;
-  McmcDriver driver([&] { return std::make_unique<mcmc::GradientTarget>(scene, *shift, kernel, to); }, cfg, scene,
-                    options);
+  const int layers = kRows + row_buffers;
   RenderOptions chain_opt = options;
   if (options.time_budget > 0) chain_opt.time_budget = std::max(1e-3, options.time_budget - timer.seconds());
-  auto pixel_of = [&](const Vec2& r) {
-    return int64_t(std::clamp(int(r.y()), 0, h - 1)) * w + std::clamp(int(r.x()), 0, w - 1);
-  };
-  const ChainRunResult& run = driver.run(
-      chain_opt, "gdmlt",
-      [&](const mcmc::TargetValue& v, double weight, SplatList& out) {
-        const double k = weight / v.f;
-        if (!is_black(v.value)) out.add(kPrimal, pixel_of(v.raster), v.value.cast<double>() * k);
-        if (v.gradient_row >= 0 && !is_black(v.gradient))
-          out.add(kRows + int(v.gradient_row / pixels), v.gradient_row % pixels, v.gradient.cast<double>() * k);
-      },
-      [&](const mcmc::Step& s, SplatList& out) {  // the paper's Fig. 9: mutations per pixel
-        out.add(kDensity, pixel_of((s.accepted ? s.proposed : s.current).raster), Rgbd::Ones());
-      },
-      [&](int64_t rounds) {
-        if (m_settings.direct_spp == 0) direct.render(int(rounds - direct.spp_done()));
-      });
-
+  ChainRunResult run;
+  double scale = 0;
   mcmc::GradientTargetCounters target_sum;
-  for (int c = 0; c < driver.chains(); ++c)  // in chain order: deterministic
-    target_sum.merge(static_cast<mcmc::GradientTarget&>(driver.target(c)).counters());
-  const double scale = driver.scale();
+  if (path_space) {
+    GdmltChains chains = run_gdmlt_path(scene, chain_opt, m_settings, kernel, layers, direct, result);
+    run = std::move(chains.run);
+    scale = chains.scale;
+    target_sum = chains.target;
+  } else {
+    run_pss_chains(scene, m_settings, options, chain_opt, choice, kernel, layers, direct, result, run, scale, target_sum);
+  }
   auto image_of = [&](int layer, double k) {
     core::Image img(w, h);
     const std::vector<Rgbd>& sum = run.sums[size_t(layer)];
@@ -200,7 +221,6 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   const int64_t mutations = run.total_mutations;
   result.layers.push_back({"density", image_of(kDensity, mutations > 0 ? double(pixels) / double(mutations) : 0.0)});
 
-  driver.report(result, "gdmlt");
   // Concrete paths by case of Eqs. 4-6: T_1 used (weight w_1), T_0 by Eq. 6, Omega_bar.
   result.stats.add("gdmlt.paths.shifted_t1", target_sum.cases[size_t(gradients::GradientCase::shifted)]);
   result.stats.add("gdmlt.paths.fallback_t0", target_sum.cases[size_t(gradients::GradientCase::fallback)]);

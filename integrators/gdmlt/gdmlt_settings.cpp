@@ -48,9 +48,16 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
                                   "reconstruction shown as the RGB layer (both are written as layers)", {"l1", "l2"});
   g.mutations = s.get_string("mutations", g.mutations,
-                             "proposals for x: pss (primary-sample-space small/large steps); path "
-                             "(path-space mutations) needs the MEMLT mutators, not implemented yet",
+                             "proposals for x: pss (primary-sample-space small/large steps) or path (path-space "
+                             "mutations of memlt on states (x, j), G-BDPT's shift as T_1; incmw does not apply)",
                              {"pss", "path"});
+  if (g.mutations == "path") {
+    g.path_mutations.read(s);
+    g.candidates = s.get_int("candidates", g.candidates,
+                             "mutations=path: seeder paths (with their neighbour) estimating the target's "
+                             "normalisation b_g and resampled for the chains' start states");
+    if (g.candidates < 1) throw ValueError("setting 'candidates' must be >= 1", "--set");
+  }
   g.large_step_prob = s.get_double("large_step_prob", g.large_step_prob, "probability of a large step");
   g.bootstrap = s.get_int("bootstrap", int(g.bootstrap), "independent samples estimating b and seeding the chains");
   g.large_step_b = s.get_bool("large_step_b", g.large_step_b, "refine b with every large step's f");
@@ -70,8 +77,6 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   if (!(g.ao_threshold >= 0.0 && g.ao_threshold <= 1.0)) throw ValueError("setting 'ao_threshold' must be in [0, 1]", "--set");
   if (!(g.ao_radius > 0.0 && g.ao_radius < 1.0)) throw ValueError("setting 'ao_radius' must be in (0, 1)", "--set");
   if (g.ao_rays < 1) throw ValueError("setting 'ao_rays' must be >= 1", "--set");
-  if (g.mutations == "path")
-    throw ValueError("setting 'mutations=path' needs the path-space mutators (not implemented yet)", "--set");
   if (!(g.large_step_prob > 0.0 && g.large_step_prob <= 1.0))
     throw ValueError("setting 'large_step_prob' must be in (0, 1]", "--set");
   if (g.bootstrap < 1) throw ValueError("setting 'bootstrap' must be >= 1", "--set");

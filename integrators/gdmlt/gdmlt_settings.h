@@ -8,6 +8,7 @@
 
 #include "gradients/shift.h"
 #include "kernels_adaptive/affinity.h"
+#include "integrators/path_chains.h"
 #include "integrators/settings.h"
 
 namespace dp::integrators {
@@ -27,7 +28,9 @@ struct GdmltSettings {
   int ao_rays = 16;                 // AO secondary rays per pixel
   float alpha = 0.2f;               // primal weight in the target and in the Poisson solve
   std::string reconstruction = "l1";
-  std::string mutations = "pss";    // pss (Kelemen); path: needs the path-space mutations
+  std::string mutations = "pss";    // pss (Kelemen) | path (path-space mutations, gdmlt_path.h)
+  PathMutationSettings path_mutations{"memlt"};  // mutations=path: the mutation set (memlt's)
+  int candidates = 16384;           // mutations=path: seeder paths estimating b_g and seeding the chains
   double large_step_prob = 0.3;
   int64_t bootstrap = 100000;
   bool large_step_b = true;

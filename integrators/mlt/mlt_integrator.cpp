@@ -52,7 +52,7 @@ RenderResult MltIntegrator::render(const scene::Scene& scene, const RenderOption
 std::unique_ptr<Integrator> make_memlt(Settings& settings) {
   MltSettings defaults;
   defaults.path_space = true;
-  defaults.mutators_preset = "memlt";
+  defaults.path_mutations.preset = "memlt";
   const MltSettings m = MltSettings::read(settings, defaults);
   return std::make_unique<MltIntegrator>(m, settings.to_json(), "memlt");
 }

@@ -6,30 +6,13 @@
 #include "core/timer.h"
 #include "integrators/chain_scheduler.h"
 #include "integrators/direct_pass.h"
+#include "integrators/path_chains.h"
 #include "integrators/tile_scheduler.h"
-#include "mcmc/mut_caustic.h"
-#include "mcmc/mut_lens.h"
-#include "mcmc/mut_manifold.h"
-#include "mcmc/mut_multichain.h"
-#include "mcmc/path_chain.h"
 #include "mcmc/path_json.h"
-#include "mcmc/path_seed.h"
 
 namespace dp::integrators {
 
 namespace {
-
-// The start path of chain c: a BDPT path chosen with probability proportional to lum(w C)
-// (path_seed.h); returns the retries needed.
-int start_path(const mcmc::PathSeeder& seeder, uint64_t seed, int c, const std::string& name, mcmc::PathState& x) {
-  core::Rng pick(seed, core::mix64(0x57A7'0000'0000ull + uint64_t(c)));
-  mcmc::PathSides sides;
-  int tries = 0;
-  while (!seeder.select(pick.uniform_double(), x, sides))
-    if (++tries == 100)
-      throw Error(name + " (mutations=path): no BDPT seed path evaluates; cannot start chain " + std::to_string(c));
-  return tries;
-}
 
 // replay=CHAIN:STEP: the chain's path after STEP steps and the last step, as JSON.
 RenderResult replay_chain(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
@@ -90,25 +73,8 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const mcmc::PathSeeder seeder(scene, so);
   const double bootstrap_seconds = timer.seconds();
 
-  mcmc::BidirLengths lengths;
-  lengths.k_min = so.min_depth + 2;  // extended lengths: depth + 2
-  lengths.k_max = options.max_depth + 2;
-  const mcmc::BidirMutation bidir(scene, lengths, settings.path_fault);
-  const mcmc::LensPerturbation lens(scene);
-  const mcmc::CausticPerturbation caustic(scene, lens.r1(), lens.r2());
-  const mcmc::MultiChainPerturbation multichain(scene, lens.r1(), lens.r2());
-  mcmc::ManifoldSettings ms;
-  ms.lambda = settings.manifold_lambda;
-  ms.sensor_prob = settings.manifold_sensor_prob;
-  const mcmc::ManifoldPerturbation manifold(scene, ms);
-  std::vector<mcmc::WeightedMutator> mutators;
-  for (const std::string& m : settings.mutators)
-    mutators.push_back({m == "lens"       ? static_cast<const mcmc::Mutator*>(&lens)
-                        : m == "caustic"  ? static_cast<const mcmc::Mutator*>(&caustic)
-                        : m == "manifold" ? static_cast<const mcmc::Mutator*>(&manifold)
-                        : m == "multichain" ? static_cast<const mcmc::Mutator*>(&multichain)
-                                             : static_cast<const mcmc::Mutator*>(&bidir),
-                        1.0});
+  const PathMutatorSet set(scene, settings.path_mutations, so.min_depth, options.max_depth, settings.path_fault);
+  const std::vector<mcmc::WeightedMutator>& mutators = set.list();
   const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
   std::vector<mcmc::PathChain> chains;
   int64_t seed_retries = 0;
@@ -175,27 +141,10 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   mcmc::PathChainCounters sum;
   for (const auto& c : counters) sum.merge(c);  // chain order
   result.stats.add(name + ".mutations", run.total_mutations);
-  int64_t proposed = 0, accepted = 0;
-  for (size_t i = 0; i < mutators.size(); ++i) {
-    const mcmc::MutatorCounters& mc = sum.mutators[i];
-    const std::string prefix = name + ".path." + mutators[i].mutator->name() + ".";
-    result.stats.add(prefix + "proposed", mc.proposed);
-    result.stats.add(prefix + "accepted", mc.accepted);
-    for (size_t k = 0; k < mc.status.size(); ++k)
-      if (k != size_t(mcmc::ProposalStatus::ok))
-        result.stats.add(prefix + "fail." + mcmc::proposal_status_name(mcmc::ProposalStatus(k)), mc.status[k]);
-    result.info[std::string("acceptance_") + mutators[i].mutator->name()] =
-        mc.proposed > 0 ? double(mc.accepted) / double(mc.proposed) : 0.0;
-    proposed += mc.proposed;
-    accepted += mc.accepted;
-  }
-  result.stats.add(name + ".path.stuck", sum.stuck);
-  result.stats.add(name + ".path.invalid", sum.invalid);
+  const int64_t invalid = report_path_chains(result, name, mutators, sum);
   result.stats.add(name + ".path.seed_retries", seed_retries);
-  int64_t nonfinite = 0;
-  for (const auto& mc : sum.mutators) nonfinite += mc.status[size_t(mcmc::ProposalStatus::nonfinite)];
   result.stats.add(name + ".nan_dropped",
-                   seeder.invalid() + sum.invalid + nonfinite + (direct_pass ? direct_pass->nan_dropped() : 0));
+                   seeder.invalid() + invalid + (direct_pass ? direct_pass->nan_dropped() : 0));
   result.stats.add(name + ".direct_spp", direct_pass ? direct_pass->spp_done() : 0);
   result.stats.add(name + ".bootstrap_samples", seeder.samples());
   result.min_spp = result.max_spp = run.total_mutations / pixels;
@@ -203,7 +152,6 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   result.info["b"] = seeder.b();
   result.info["bootstrap_seconds"] = bootstrap_seconds;
   result.info["chain_seconds"] = run.seconds;
-  result.info["acceptance_rate"] = proposed > 0 ? double(accepted) / double(proposed) : 0.0;
   result.info["chains"] = n_chains;
   result.info["rounds"] = run.rounds;
   result.info["mutations_per_pixel"] = double(run.total_mutations) / double(pixels);

@@ -1,6 +1,5 @@
 #include "integrators/mlt/mlt_settings.h"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
@@ -25,35 +24,7 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
       "mutations", m.path_space ? "path" : "pss", "state space of the chains: pss (primary samples, Kelemen) | path (Veach's path-space mutations)",
       {"pss", "path"});
   m.path_space = mutations == "path";
-  const std::string mutators = s.get_string(
-      "mutators", m.mutators_preset,
-      "path-space mutations (mutations=path): veach (= bidir,lens,caustic,multichain), memlt (= veach + manifold) or a "
-      "comma list of bidir (Veach's bidirectional mutation, needed: the only one that changes lengths), lens, caustic, "
-      "multichain, manifold (Jakob & Marschner's manifold perturbation)");
-  m.mutators.clear();
-  if (mutators == "veach" || mutators == "memlt") {
-    m.mutators = {"bidir", "lens", "caustic", "multichain"};
-    if (mutators == "memlt") m.mutators.push_back("manifold");
-  } else {
-    size_t at = 0;
-    while (at <= mutators.size()) {
-      const size_t end = std::min(mutators.find(',', at), mutators.size());
-      const std::string name = mutators.substr(at, end - at);
-      if (name != "bidir" && name != "lens" && name != "caustic" && name != "multichain" && name != "manifold")
-        throw ValueError("setting 'mutators': unknown mutation '" + name +
-                             "' (bidir, lens, caustic, multichain, manifold, veach or memlt)",
-                         "--set");
-      m.mutators.push_back(name);
-      at = end + 1;
-    }
-    if (std::find(m.mutators.begin(), m.mutators.end(), "bidir") == m.mutators.end())
-      throw ValueError("setting 'mutators' must include bidir: the perturbations never change a path's length, so "
-                       "without it the chain is not ergodic", "--set");
-  }
-  m.manifold_lambda = s.get_double("manifold_lambda", m.manifold_lambda,
-                                   "manifold perturbation: vMF peak density lambda^2 max(1/(4 pi), p) (Jakob & Marschner 2012)");
-  m.manifold_sensor_prob = s.get_double("manifold_sensor_prob", m.manifold_sensor_prob,
-                                        "manifold perturbation: probability of starting at the pinhole");
+  m.path_mutations.read(s);
   m.direct_spp = s.get_int("direct_spp", m.direct_spp,
                            "mutations=path: paths of <= 2 segments (emitters seen directly, direct lighting) rendered by "
                            "the path tracer and left out of the chains (Mitsuba's directSamples): N samples per pixel "
@@ -74,9 +45,6 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
     m.replay_chain = int(chain);
     m.replay_step = step;
   }
-  if (!(m.manifold_lambda > 0.0)) throw ValueError("setting 'manifold_lambda' must be > 0", "--set");
-  if (!(m.manifold_sensor_prob >= 0.0 && m.manifold_sensor_prob <= 1.0))
-    throw ValueError("setting 'manifold_sensor_prob' must be in [0, 1]", "--set");
   if (!(m.large_step_prob > 0.0 && m.large_step_prob <= 1.0))
     throw ValueError("setting 'large_step_prob' must be in (0, 1]", "--set");
   if (m.bootstrap < 1) throw ValueError("setting 'bootstrap' must be >= 1", "--set");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/path_chains.h"
 #include "integrators/settings.h"
 #include "mcmc/chain.h"
 #include "mcmc/mut_bidir.h"
@@ -20,13 +21,9 @@ struct MltSettings {
   int chains = 0;                // independent chains; 0 = 4 per thread
   int rr_depth = 5;              // Russian roulette after this many segments (as PT)
   bool nee = true;               // next-event estimation with MIS inside each path (as PT)
-  // Path-space chains (docs/memlt_plan.md): mutations=path and the mutation set
-  // (bidir, lens, caustic, multichain, manifold; "veach" = the first four).
+  // Path-space chains (docs/memlt_plan.md): mutations=path and the mutation set.
   bool path_space = false;
-  std::string mutators_preset = "veach";  // the default of `mutators` (memlt: "memlt")
-  std::vector<std::string> mutators{"bidir", "lens", "caustic", "multichain"};
-  double manifold_lambda = 50;       // vMF peak factor of the manifold perturbation
-  double manifold_sensor_prob = 0.25;
+  PathMutationSettings path_mutations;  // memlt: preset "memlt"
   // Path space: direct light (<= 2 segments) by PT; 0 = auto (interleaved with the chains'
   // rounds, as many samples per pixel as mutations per pixel), -1 = by the chains.
   int direct_spp = 0;

@@ -34,6 +34,7 @@ struct Variant {
   gradients::JacobianFault fault = gradients::JacobianFault::none;
   bool symmetric_as_one = false;  // symmetric adaptive pairs splatted with weight 1, not 2
   bool incmw = true;
+  std::string mutations = "pss";
 };
 
 integrators::RenderResult render(const scene::Scene& s, const std::string& name, int spp, uint64_t seed,
@@ -44,6 +45,7 @@ integrators::RenderResult render(const scene::Scene& s, const std::string& name,
     settings.set("bootstrap", "20000");
     settings.set("kernel", variant.kernel);
     settings.set("incmw", variant.incmw ? "true" : "false");
+    settings.set("mutations", variant.mutations);
     integrators::GdmltSettings g = integrators::GdmltSettings::read(settings);
     g.fault = variant.fault;
     g.fault_symmetric_as_one = variant.symmetric_as_one;
@@ -184,9 +186,11 @@ std::unique_ptr<scene::Scene> specular_box() {
                        scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx), kRes);
 }
 
-void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_control) {
+void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_control, const std::string& mutations = "pss") {
   const Stats pt = run_stats(s, "path", 64, seed + 5000);
-  const Stats gd = run_stats(s, "gdmlt", 128, seed);  // kernel=standard: the dx/dy layers
+  Variant variant;
+  variant.mutations = mutations;
+  const Stats gd = run_stats(s, "gdmlt", 128, seed, variant);  // kernel=standard: the dx/dy layers
   double mean_ratio = 0;
   const double r_img = test::worst_welch(gd.image, pt.image, 0.01, &mean_ratio);
   const test::Moments m = test::moments(gd.image[0]), p = test::moments(pt.image[0]);
@@ -205,7 +209,7 @@ void check_against_pt(const scene::Scene& s, uint64_t seed, bool negative_contro
   // carry Jacobians near 1 over most of the image -- so it is not a control there). Power: the L2 image mean's
   // standard error is ~0.14-0.35% of the mean, a block's ~4x that; with the Sidak
   // critical t of ~4, block biases above ~2-6% are detected.
-  Variant unit_jacobian;
+  Variant unit_jacobian = variant;
   unit_jacobian.fault = gradients::JacobianFault::unit;
   const Stats broken = run_stats(s, "gdmlt", 128, seed, unit_jacobian);
   const double rb_img = test::worst_welch(broken.image, pt.image, 0.01);
@@ -221,6 +225,17 @@ TEST_CASE("gdmlt: L2 image and gradients agree with the path tracer (lit box, ro
 
 TEST_CASE("gdmlt: L2 image and gradients agree with the path tracer (mirror and glass: manifold shift)", "[stat]") {
   check_against_pt(*specular_box(), 200, false);
+}
+
+// mutations=path (gdmlt_path.h): memlt's mutations on states (x, j), G-BDPT's shift as T_1.
+// Negative control as above: every shift Jacobian forced to 1 (watched: see the INFO).
+TEST_CASE("gdmlt mutations=path: L2 image and gradients agree with the path tracer (lit box, rough conductor)",
+          "[stat]") {
+  check_against_pt(*glossy_box(), 400, true, "path");
+}
+
+TEST_CASE("gdmlt mutations=path: L2 image and gradients agree with the path tracer (mirror and glass)", "[stat]") {
+  check_against_pt(*specular_box(), 500, false, "path");
 }
 
 TEST_CASE("gdmlt kernel=adaptive: L2 image and every pair row agree with the path tracer", "[stat]") {
