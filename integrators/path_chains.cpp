@@ -96,6 +96,17 @@ int64_t report_path_chains(RenderResult& result, const std::string& name,
         result.stats.add(prefix + "fail." + mcmc::proposal_status_name(mcmc::ProposalStatus(k)), mc.status[k]);
     result.info[std::string("acceptance_") + mutators[i].mutator->name()] =
         mc.proposed > 0 ? double(mc.accepted) / double(mc.proposed) : 0.0;
+    // Per path depth (segments of the current path): [depth, proposed, acceptance].
+    core::Json by_depth = core::Json::array();
+    for (size_t d = 0; d < mc.proposed_by_depth.size(); ++d)
+      if (mc.proposed_by_depth[d] > 0) {
+        core::Json row = core::Json::array();
+        row.push_back(double(d));
+        row.push_back(double(mc.proposed_by_depth[d]));
+        row.push_back(double(mc.accepted_by_depth[d]) / double(mc.proposed_by_depth[d]));
+        by_depth.push_back(row);
+      }
+    result.info[std::string("acceptance_by_depth_") + mutators[i].mutator->name()] = by_depth;
     proposed += mc.proposed;
     accepted += mc.accepted;
     nonfinite += mc.status[size_t(mcmc::ProposalStatus::nonfinite)];

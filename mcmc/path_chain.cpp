@@ -1,5 +1,6 @@
 #include "mcmc/path_chain.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -10,6 +11,10 @@ void MutatorCounters::merge(const MutatorCounters& o) {
   accepted += o.accepted;
   for (size_t i = 0; i < status.size(); ++i) status[i] += o.status[i];
   acceptance_sum += o.acceptance_sum;
+  for (size_t d = 0; d < proposed_by_depth.size(); ++d) {
+    proposed_by_depth[d] += o.proposed_by_depth[d];
+    accepted_by_depth[d] += o.accepted_by_depth[d];
+  }
 }
 
 void PathChainCounters::merge(const PathChainCounters& o) {
@@ -61,7 +66,9 @@ PathStep PathChain::step() {
   const Mutator& mut = *m_mutators[pick].mutator;
   st.mutator = int(pick);
   MutatorCounters& mc = m_counters.mutators[pick];
+  const size_t depth = size_t(std::clamp(m_x.depth(), 0, MutatorCounters::kDepths - 1));
   ++mc.proposed;
+  ++mc.proposed_by_depth[depth];
   MutationRecord rec;
   const ProposalStatus status = mut.sample(m_x, m_y, rec, m_rng, m_sides);
   ++mc.status[size_t(status)];
@@ -87,6 +94,7 @@ PathStep PathChain::step() {
     std::swap(m_x, m_y);
     st.accepted = true;
     ++mc.accepted;
+    ++mc.accepted_by_depth[depth];
   }
   return st;
 }

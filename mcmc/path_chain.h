@@ -22,6 +22,9 @@ struct MutatorCounters {
   int64_t proposed = 0, accepted = 0;
   std::array<int64_t, size_t(ProposalStatus::count)> status{};  // proposals by outcome
   double acceptance_sum = 0;                                     // sum of a over the proposals
+  // By the current path's depth (segments; the last entry also counts deeper paths).
+  static constexpr int kDepths = 16;
+  std::array<int64_t, kDepths> proposed_by_depth{}, accepted_by_depth{};
   void merge(const MutatorCounters& o);
 };
 
