@@ -5,7 +5,9 @@
 // signal. A signal while the scene loads exits at once with nothing written.
 // `--partial` writes FILE.exr with the raw sums and counts instead (apps/partial_file.h)
 // and FILE.json; `--part K/N` renders the K-th of N disjoint shares (tile_scheduler.h)
-// for `deltapath merge` (issue 17), with --spp or --time.
+// for `deltapath merge` (issue 17), with --spp or --time. `--mpi` (or a start by mpirun
+// with more than one rank) renders rank r's share and reduces the shares on rank 0
+// (apps/mpi_render.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include "apps/cli_checks.h"
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "apps/mpi_render.h"
 #include "apps/output.h"
 #include "apps/partial_file.h"
 #include "core/error.h"
@@ -35,6 +38,7 @@ struct RenderArgs {
   bool quiet = false;
   bool partial = false;
   std::string part;  // "K/N" (validated by part_spec)
+  bool mpi = false;
 };
 
 // The facts of a --partial file (apps/partial_file.h) of this render.
@@ -64,8 +68,8 @@ core::Facts partial_facts(const RenderArgs& a, const std::string& hash, const st
   return f;
 }
 
-void run_render(const RenderArgs& a) {
-  if (a.quiet) log::set_level(log::Level::warn);
+void run_render(const RenderArgs& a, const MpiWorld* world) {
+  if (a.quiet || (world && world->rank > 0)) log::set_level(log::Level::warn);
   set_early_exit_message("interrupted while loading the scene; nothing written");
   core::Timer load_timer;
   const auto scene = scene::load_scene(a.scene, {manifold::normal_estimation_hook()});
@@ -94,6 +98,14 @@ void run_render(const RenderArgs& a) {
   opt.stop = stop_flag();
   if (opt.max_depth < 1) throw ValueError("--max-depth must be >= 1", "command line");
   if (a.time < 0) throw ValueError("--time must be positive", "command line");
+  if (world) {
+    if (!integrator->supports_raw())
+      throw ValueError("integrator " + name + " does not support --mpi yet (path, gpt)", "command line");
+    opt.raw = true;
+    opt.part = world->rank;
+    opt.parts = world->size;
+    integrators::check_parts(scene->camera().width(), scene->camera().height(), opt);
+  }
   if (a.partial) {
     if (!integrator->supports_raw())
       throw ValueError("integrator " + name + " does not support --partial yet", "command line");
@@ -139,6 +151,10 @@ void run_render(const RenderArgs& a) {
   side["time_budget"] = a.time > 0 ? core::Json(a.time) : core::Json(nullptr);
   side["load_seconds"] = load_seconds;
   side["interrupted_by"] = sig ? core::Json(signal_name(sig)) : core::Json(nullptr);
+  if (world) {
+    mpi_reduce_and_write(*world, *integrator, opt, result, side, a.out);
+    return;
+  }
   if (a.partial) {
     write_partial(a.out, result.raw, partial_facts(a, hash, name, settings, opt, result, scene->camera().width(),
                                                    scene->camera().height()));
@@ -174,7 +190,20 @@ void register_render(CLI::App& app) {
   cmd->add_option("--part", args->part, "render share K of N (1-based) for `merge`; needs --partial")
       ->check(part_spec())
       ->needs(partial);
-  cmd->callback([args] { run_render(*args); });
+  cmd->add_flag("--mpi", args->mpi,
+                "split the render over the MPI ranks (implied when started by mpirun with > 1 rank); rank 0 "
+                "writes the outputs (path, gpt)")
+      ->excludes(partial);
+  cmd->callback([args] {
+    if (!args->mpi && !under_mpirun()) return run_render(*args, nullptr);
+    const MpiWorld world = mpi_start();
+    try {
+      run_render(*args, &world);
+    } catch (const std::exception& e) {  // every rank ends: no rank waits for this one
+      mpi_abort("rank " + std::to_string(world.rank) + ": " + e.what());
+    }
+    mpi_stop();
+  });
 }
 
 }  // namespace dp::apps

@@ -18,3 +18,5 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 if(DP_BUILD_TESTS)
   find_package(Catch2 2 REQUIRED)
 endif()
+# Optional: Open MPI for `render --mpi` (issue 17); without it the flag says so.
+find_package(MPI COMPONENTS CXX QUIET)

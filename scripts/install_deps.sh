@@ -7,6 +7,7 @@ packages=(
   libembree-dev libeigen3-dev libopenexr-dev libboost-random-dev libboost-math-dev
   libcgal-dev catch2 libyaml-cpp-dev libtbb-dev libcli11-dev libtinyobjloader-dev
   libstb-dev libfftw3-dev zlib1g-dev libpugixml-dev python3 python3-matplotlib chromium
+  openmpi-bin libopenmpi-dev
 )
 missing=()
 for p in "${packages[@]}"; do

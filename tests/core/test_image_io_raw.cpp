@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/image_io_raw.h"
+#include "core/raw_bytes.h"
 
 using namespace dp;
 using namespace dp::core;
@@ -70,4 +71,28 @@ TEST_CASE("raw images add buffer by buffer and report layout differences", "[uni
   c = a;
   c.width = 1;
   CHECK(a.layout_difference(c) == "size 2x1 vs 1x1");
+}
+
+// The in-memory form `render --mpi` sends between ranks (core/raw_bytes.h).
+TEST_CASE("raw bytes keep every double, count and fact; truncation is an error", "[unit]") {
+  RawImage raw;
+  raw.width = 4;
+  raw.height = 2;
+  for (size_t i = 0; i < raw.pixels(); ++i) {
+    raw.sums["primal"].push_back(Rgbd(1.0 / double(i + 3), -0.0, 1e300 * double(i)));
+    raw.counts["spp"].push_back(int64_t(i) * 5000000000ll);
+  }
+  const std::map<std::string, std::string> facts{{"counter.rays", "12"}, {"wall_seconds", "0.5"}};
+  const std::vector<uint8_t> bytes = raw_to_bytes(raw, facts);
+  std::map<std::string, std::string> f;
+  const RawImage back = raw_from_bytes(bytes, f);
+  CHECK(f == facts);
+  REQUIRE(back.layout_difference(raw).empty());
+  CHECK(back.counts.at("spp") == raw.counts.at("spp"));
+  for (size_t i = 0; i < raw.pixels(); ++i)
+    for (int c = 0; c < 3; ++c) CHECK(same_bits(back.sums.at("primal")[i][c], raw.sums.at("primal")[i][c]));
+  for (size_t cut : {size_t(0), size_t(7), bytes.size() / 2, bytes.size() - 1}) {
+    const std::vector<uint8_t> head(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
+    CHECK_THROWS_AS(raw_from_bytes(head, f), ValueError);
+  }
 }

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# `render --mpi` under mpirun (issue 17): with N ranks on 2 cores (oversubscribed), the
+# image equals the single-process render bit for bit (each rank renders the same
+# (pass, tile) work units as `--part r+1/N`; rank 0 adds the buffers in rank order) for
+# `path` and `gpt` (every layer, the Poisson reconstructions included), and equals the
+# merge of the 3 `--partial` files of the same shares; counters are summed over the ranks;
+# a --time render works; an integrator without raw buffers, a rank that dies and
+# --mpi with --partial are loud failures with no image written.
+# Skipped (exit 0, says so) without mpirun or when deltapath was built without MPI.
+# Usage: test_mpi.sh path/to/deltapath  (run from the repository root)
+set -u
+bin=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/harness.sh"  # check, $fail
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+if ! command -v mpirun >/dev/null; then echo "skipped: no mpirun"; exit 0; fi
+sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
+if "$bin" render "$tmp/scene.yaml" --mpi --spp 1 --quiet --out "$tmp/probe.exr" 2>&1 | grep -q "without MPI"; then
+  echo "skipped: deltapath built without MPI"
+  exit 0
+fi
+json_check() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" 2>/dev/null; }
+same_exr() {
+  cmp -s "$1" "$2" && return 0
+  "$bin" compare "$1" "$2" | sed 's/^/       /'
+  return 1
+}
+common=(--spp 8 --seed 3 --max-depth 5 --quiet)
+
+for integrator in path gpt; do
+  d="$tmp/$integrator"
+  mkdir -p "$d"
+  r=(render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
+  "$bin" "${r[@]}" --threads 2 --out "$d/single.exr"
+  for n in 2 3; do
+    mpirun -np $n "$bin" "${r[@]}" --threads 1 --out "$d/mpi$n.exr" 2>"$d/err$n"
+    check "$integrator: mpirun -np $n exits 0" test $? -eq 0
+    check "$integrator: $n ranks give the single-process image bit for bit" same_exr "$d/mpi$n.exr" "$d/single.exr"
+    check "$integrator: sidecar says ranks = $n, with a wall time per rank" \
+      json_check "$d/mpi$n.json" "j['ranks'] == $n and len(j['rank_wall_seconds']) == $n and j['mpi_bytes_gathered'] > 0"
+    check "$integrator: only rank 0 wrote (no stderr)" test ! -s "$d/err$n"
+  done
+  # Counters are summed over the ranks: the same totals as one process.
+  check "$integrator: counters summed over ranks equal the single render's" python3 -c "
+import json,sys
+a=json.load(open('$d/mpi3.json'))['counters']; b=json.load(open('$d/single.json'))['counters']
+keys=[k for k in b if not k.endswith('_seconds')]
+sys.exit(0 if all(a.get(k)==b[k] for k in keys) and keys else 1)"
+  for k in 1 2 3; do "$bin" "${r[@]}" --threads 1 --partial --part "$k/3" --out "$d/p$k.exr"; done
+  "$bin" merge "$d/p1.exr" "$d/p2.exr" "$d/p3.exr" --quiet --out "$d/merged.exr"
+  check "$integrator: merge of 3 partial files = mpirun -np 3" same_exr "$d/merged.exr" "$d/mpi3.exr"
+done
+
+mpirun -np 2 "$bin" render "$tmp/scene.yaml" --integrator gpt --time 1 --quiet --threads 1 --out "$tmp/timed.exr"
+check "--time under mpirun exits 0 with samples from both ranks" \
+  json_check "$tmp/timed.json" "j['ranks'] == 2 and j['spp_min'] > 0 and j['partial'] == False"
+
+mpirun -np 2 "$bin" render "$tmp/scene.yaml" --integrator mlt --spp 1 --quiet --out "$tmp/mlt.exr" 2>"$tmp/err_mlt"
+code=$?
+check "an integrator without raw buffers fails (exit $code) naming --mpi" grep -q "does not support --mpi" "$tmp/err_mlt"
+check "  ... non-zero exit, no image" test $code -ne 0 -a ! -e "$tmp/mlt.exr"
+
+# Rank 1 is killed before it renders: mpirun must fail and rank 0 must not write an image.
+mpirun -np 2 bash -c 'if [ "$OMPI_COMM_WORLD_RANK" = 1 ]; then kill -9 $$; fi; exec "$0" "$@"' \
+  "$bin" render "$tmp/scene.yaml" --spp 4 --quiet --out "$tmp/dead.exr" >/dev/null 2>&1
+code=$?
+check "a rank that dies fails the run (exit $code), no image written" test $code -ne 0 -a ! -e "$tmp/dead.exr"
+
+"$bin" render "$tmp/scene.yaml" --mpi --partial --spp 1 --out "$tmp/x.exr" >/dev/null 2>&1
+check "--mpi with --partial is a usage error" test $? -ne 0 -a ! -e "$tmp/x.exr"
+exit $fail
