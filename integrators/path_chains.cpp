@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
 
@@ -71,6 +72,17 @@ PathMutatorSet::PathMutatorSet(const scene::Scene& scene, const PathMutationSett
                       : m == "multichain" ? static_cast<const mcmc::Mutator*>(&m_multichain)
                                           : static_cast<const mcmc::Mutator*>(&m_bidir),
                       1.0});
+}
+
+mcmc::PathSeedOptions seed_options(const RenderOptions& options, int rr_depth, int64_t bootstrap, int min_depth) {
+  mcmc::PathSeedOptions so;
+  so.max_depth = options.max_depth;
+  so.min_depth = min_depth;
+  so.rr_depth = rr_depth;
+  so.samples = bootstrap;
+  so.seed = options.seed;
+  so.threads = resolve_threads(options);
+  return so;
 }
 
 int start_path(const mcmc::PathSeeder& seeder, uint64_t seed, int c, const std::string& name, mcmc::PathState& x) {

@@ -46,6 +46,10 @@ class PathMutatorSet {
   std::vector<mcmc::WeightedMutator> m_list;
 };
 
+// The seeder's options for a render (threads and seed from `options`; paths of
+// min_depth .. options.max_depth segments).
+mcmc::PathSeedOptions seed_options(const RenderOptions& options, int rr_depth, int64_t bootstrap, int min_depth);
+
 // The start path of chain c: a seeder path chosen with probability proportional to
 // lum(w C) (path_seed.h); returns the retries needed (dp::Error after 100).
 int start_path(const mcmc::PathSeeder& seeder, uint64_t seed, int c, const std::string& name, mcmc::PathState& x);

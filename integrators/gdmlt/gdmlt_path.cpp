@@ -41,13 +41,8 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
 
-  mcmc::PathSeedOptions so;
-  so.max_depth = options.max_depth;
-  so.min_depth = 3;  // paths of <= 2 segments are the direct pass's
-  so.rr_depth = settings.rr_depth;
-  so.samples = settings.bootstrap;
-  so.seed = options.seed;
-  so.threads = threads;
+  // Paths of <= 2 segments are the direct pass's.
+  const mcmc::PathSeedOptions so = seed_options(options, settings.rr_depth, settings.bootstrap, 3);
   const mcmc::PathSeeder seeder(scene, so);
 
   mcmc::PathGradientOptions po;

@@ -61,15 +61,9 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
 
-  mcmc::PathSeedOptions so;
-  so.max_depth = options.max_depth;
-  so.rr_depth = settings.rr_depth;
-  so.samples = settings.bootstrap;
-  so.seed = options.seed;
-  so.threads = threads;
   // Direct light (<= 2 segments) by the path tracer, the chains the rest (Mitsuba 0.6).
   const bool direct = settings.direct_spp >= 0 && settings.replay_chain < 0;
-  so.min_depth = direct ? 3 : 1;
+  const mcmc::PathSeedOptions so = seed_options(options, settings.rr_depth, settings.bootstrap, direct ? 3 : 1);
   const mcmc::PathSeeder seeder(scene, so);
   const double bootstrap_seconds = timer.seconds();
 
