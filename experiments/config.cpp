@@ -137,7 +137,7 @@ Crop parse_crop(const Ctx& ctx, const YAML::Node& node) {
 
 ExperimentConfig parse_root(const Ctx& ctx, const YAML::Node& root) {
   if (!root.IsDefined() || root.IsNull()) throw ParseError("empty experiment file", ctx.file, 1);
-  yamlx::check_keys(ctx, root, {"name", "scene", "reference", "budget", "seeds", "runs", "metrics", "crops", "output"},
+  yamlx::check_keys(ctx, root, {"name", "scene", "reference", "budget", "seeds", "runs", "metrics", "crops", "output", "launcher"},
                     "experiment");
   ExperimentConfig c;
   c.file = ctx.file;
@@ -183,6 +183,11 @@ ExperimentConfig parse_root(const Ctx& ctx, const YAML::Node& root) {
     c.output = yamlx::resolve_path(ctx, yamlx::get_string(ctx, o, "output"));
   else
     c.output = yamlx::resolve_path(ctx, "results/" + slugify(c.name));
+  if (const YAML::Node l = root["launcher"]; l.IsDefined()) {
+    std::istringstream words(yamlx::get_string(ctx, l, "launcher"));
+    for (std::string w; words >> w;) c.launcher.push_back(w);
+    if (c.launcher.empty()) yamlx::value_error(ctx, l, "'launcher' is empty (e.g. mpirun -np 4)");
+  }
   return c;
 }
 

@@ -14,6 +14,8 @@
 //                                        #   discard: N} to drop the N worst pixels
 //   crops: [[x, y, w, h], ...]           # optional insets for the report (pixels)
 //   output: results/cbox-gpt-vs-pt       # default: results/<name>
+//   launcher: mpirun -np 4               # optional: every point runs as `<launcher>
+//                                        #   deltapath render ...` (launcher.h)
 //
 // A run's `reconstruction` and `settings` become integrator settings (`--set
 // reconstruction=l2`, `--set alpha=0.2`); the integrator rejects keys it does not know.
@@ -72,6 +74,7 @@ struct ExperimentConfig {
   std::vector<Metric> metrics;  // default: relmse
   std::vector<Crop> crops;
   std::string output;  // resolved path
+  std::vector<std::string> launcher;  // command prefix, split at whitespace; empty: in process
 
   // "5 s" / "16 spp" for messages; "t5s" / "spp16" for file names.
   std::string budget_text(double b) const;

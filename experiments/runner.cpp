@@ -16,6 +16,7 @@
 #include "core/log.h"
 #include "core/timer.h"
 #include "experiments/integrator_setup.h"
+#include "experiments/launcher.h"
 #include "experiments/plot.h"
 #include "experiments/report.h"
 #include "experiments/results_csv.h"
@@ -125,9 +126,11 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
 
   // Create every run's integrator first: a bad setting fails now, not after hours.
   std::vector<PreparedIntegrator> prepared;
+  std::vector<std::vector<std::pair<std::string, std::string>>> run_settings;  // for a launcher's --set
   for (const auto& r : config.runs) {
     auto settings = r.settings;
     if (!r.reconstruction.empty()) settings.emplace_back("reconstruction", r.reconstruction);
+    run_settings.push_back(settings);
     prepared.push_back(prepare_integrator(*scene, r.integrator, settings, config.file, r.line));
   }
 
@@ -148,6 +151,8 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
     std::string k = "v1|" + scene_hash + "|" + config.runs[run].integrator + "|" + prepared[run].settings_text + "|" +
                     config.budget_label(config.budgets[budget]) + "|" + std::to_string(seed) + "|" +
                     std::to_string(max_depth);
+    if (!config.launcher.empty())  // (only then: keys of existing experiments stay valid)
+      for (const auto& w : config.launcher) k += "|" + w;
     return hex64(fnv1a(k));
   };
 
@@ -202,7 +207,23 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
           if (config.budget_kind == BudgetKind::time) opt.time_budget = budget;
           else opt.spp = int(budget);
           core::Timer timer;
-          integrators::RenderResult result = prepared[r].integrator->render(*scene, opt);
+          integrators::RenderResult result;
+          core::Json counters = core::Json::object(), info;
+          if (config.launcher.empty()) {
+            result = prepared[r].integrator->render(*scene, opt);
+            for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
+            info = result.info;
+          } else {  // a separate process (launcher.h)
+            LaunchedRender lr =
+                launch_render(config.launcher, config.scene, run.integrator, run_settings[r], opt, stem + ".launched");
+            result.layers = std::move(lr.layers);
+            result.min_spp = lr.min_spp;
+            result.max_spp = lr.max_spp;
+            result.wall_seconds = lr.wall_seconds;
+            result.partial = lr.partial;
+            counters = lr.counters;
+            info = lr.info;
+          }
           p.wall_time = timer.seconds();
           if (result.partial || (options.render.stop && options.render.stop->load()))
             throw Error("experiment interrupted during " + run.name + " (" + config.budget_text(budget) + ", seed " +
@@ -233,10 +254,8 @@ ExperimentResult run_experiment(const ExperimentConfig& config, const RunnerOpti
           side["spp_max"] = result.max_spp;
           side["scored_layer"] = p.layer.empty() ? "RGB" : p.layer;
           side["nonfinite_pixels"] = uint64_t(nonfinite);
-          core::Json counters = core::Json::object();
-          for (const auto& [k, v] : result.stats.counters()) counters[k] = v;
           side["counters"] = counters;
-          side["info"] = result.info;
+          side["info"] = info;
           core::write_file_atomically(stem + ".json", side.dump());
           write_marker(stem + ".done", Marker{key, p.layer, p.wall_time, p.spp});
           layers = std::move(result.layers);

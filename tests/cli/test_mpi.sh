@@ -69,4 +69,26 @@ check "a rank that dies fails the run (exit $code), no image written" test $code
 
 "$bin" render "$tmp/scene.yaml" --mpi --partial --spp 1 --out "$tmp/x.exr" >/dev/null 2>&1
 check "--mpi with --partial is a usage error" test $? -ne 0 -a ! -e "$tmp/x.exr"
+# An experiment file with `launcher: mpirun -np 2` runs every point through mpirun; its
+# points (spp budgets) equal the in-process experiment's bit for bit, so the CSVs match.
+for mode in local mpi; do
+  {
+    echo "name: launch-$mode"
+    echo "scene: scene.yaml"
+    echo "reference: {integrator: path, spp: 16}"
+    echo "budget: {spp: [4]}"
+    echo "runs:"
+    echo "  - {name: PT, integrator: path}"
+    echo "  - {name: G-PT L1, integrator: gpt, reconstruction: l1}"
+    echo "metrics: [relmse, mse]"
+    echo "output: out-$mode"
+    [ $mode = mpi ] && echo "launcher: mpirun -np 2"
+  } > "$tmp/exp-$mode.yaml"
+  "$bin" experiment "$tmp/exp-$mode.yaml" --quiet --no-plot --threads 1 >/dev/null 2>"$tmp/exp-$mode.err"
+  check "experiment ($mode) exits 0" test $? -eq 0
+done
+check "launcher: mpirun -np 2 gives the in-process experiment's metrics exactly" \
+  cmp -s <(cut -d, -f1-3,5- "$tmp/out-local/results.csv") <(cut -d, -f1-3,5- "$tmp/out-mpi/results.csv")
+check "  ... and its points' sidecars say 2 ranks" \
+  json_check "$(ls "$tmp"/out-mpi/runs/*/*.json 2>/dev/null | head -1)" "j['info']['ranks'] == 2"
 exit $fail
