@@ -37,7 +37,7 @@ Rgb fresnel_conductor(float cos_i, const Rgb& eta, const Rgb& k) {
   const double si2 = 1.0 - ci * ci;
   Rgb out;
   for (int c = 0; c < 3; ++c) {
-    const C n(double(eta[c]), double(k[c]));
+    const C n{double(eta[c]), double(k[c])};  // braces: with parentheses clang reads a function declaration
     const C n2 = n * n;
     // n cos_t = sqrt(n^2 - sin_i^2) (Snell with a complex index).
     const C n_cos_t = std::sqrt(n2 - si2);

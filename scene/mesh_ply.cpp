@@ -257,7 +257,10 @@ std::unique_ptr<TriangleMesh> load_ply(const std::string& path) {
           continue;
         }
         const double n = body.read(prop.count_type);
-        if (n < 0) body.fail("negative list length in element '" + quote_input(e.name) + "'");
+        // A list length is a whole number a reader can loop over: NaN, a fraction or
+        // 1e47 (the fuzzer's ASCII count) must not reach size_t(n).
+        if (!(n >= 0) || n != std::floor(n) || n > 16777216.0)
+          body.fail("bad list length in element '" + quote_input(e.name) + "' (a whole number in 0 .. 2^24)");
         const bool indices = int(p) == ilist;
         if (indices) {
           if (n < 3) body.fail("face " + std::to_string(k) + " has " + std::to_string(int(n)) + " vertices (at least 3 needed)");

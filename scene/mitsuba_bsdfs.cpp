@@ -93,8 +93,8 @@ BsdfPtr conductor(Object& o, bool rough) {
 BsdfPtr dielectric(Object& o, const std::string& type) {
   float int_ior = kBk7;
   if (const XmlElement* m = o.take("material")) {  // non-Mitsuba <material value="bk7"/>
-    const std::optional<float> ior = named_ior(*m->attribute("value"));
-    if (!ior) o.error_at(*m, "unknown index of refraction '" + *m->attribute("value") + "'");
+    const std::optional<float> ior = named_ior(o.value_of(*m));
+    if (!ior) o.error_at(*m, "unknown index of refraction '" + o.value_of(*m) + "'");
     int_ior = *ior;
   }
   int_ior = o.get_ior("int_ior", int_ior);

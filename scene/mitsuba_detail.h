@@ -63,6 +63,8 @@ class Object {
   void ignore(const std::string& name, const std::string& why);
   // Reports unread parameters (see the class comment). Call once at the end.
   void finish();
+  // The `value` attribute of a parameter element; a file:line error when it has none.
+  const std::string& value_of(const XmlElement& e) const;
   [[noreturn]] void error(const std::string& msg) const;
   [[noreturn]] void error_at(const XmlElement& at, const std::string& msg) const;
   [[noreturn]] void value_error_at(const XmlElement& at, const std::string& msg) const;

@@ -46,7 +46,7 @@ Rgb nonnegative(Object& o, const std::string& name, const Rgb& def) {
 EmitterPtr envmap(Loader& ld, Object& o) {
   const XmlElement* fn = o.take("filename");
   if (!fn || fn->tag != "string") o.error("envmap needs a <string name=\"filename\">");
-  const std::string file = *fn->attribute("value");
+  const std::string file = o.value_of(*fn);
   const float scale = o.get_float("scale", 1.0f);
   if (!(scale >= 0.0f)) o.value_error_at(o.elem(), "envmap 'scale' must be >= 0");
   const Mat4d m = o.get_transform("to_world");

@@ -424,6 +424,7 @@ void Object::finish() {
 
 void Object::error(const std::string& msg) const { fail(m_elem, msg); }
 void Object::error_at(const XmlElement& at, const std::string& msg) const { fail(at, msg); }
+const std::string& Object::value_of(const XmlElement& e) const { return attr(e, "value"); }
 void Object::value_error_at(const XmlElement& at, const std::string& msg) const {
   throw ValueError(msg, at.file_name(), at.line);
 }

@@ -124,7 +124,7 @@ void smooth_normals(TriangleMesh& m) {
 std::unique_ptr<TriangleMesh> load_file_mesh(Loader& ld, Object& o, bool& face_normals, bool& flip_v) {
   const XmlElement* fn = o.take("filename");
   if (!fn || fn->tag != "string") o.error(o.describe() + " needs a <string name=\"filename\">");
-  const std::string file = *fn->attribute("value");
+  const std::string file = o.value_of(*fn);
   const std::string path = ld.resolve_path(*fn, file);
   std::unique_ptr<TriangleMesh> mesh;
   try {

@@ -81,7 +81,7 @@ UvTransform parse_uv_transform(Object& o) {
 TexturePtr build_bitmap(Loader& ld, Object& o) {
   const XmlElement* fn = o.take("filename");
   if (!fn || fn->tag != "string") o.error("bitmap texture needs a <string name=\"filename\">");
-  const std::string file = *fn->attribute("value");
+  const std::string file = o.value_of(*fn);
   const bool raw = o.get_bool("raw", false);
   const std::string wrap = o.get_string("wrap_mode", "repeat");
   if (wrap != "repeat") o.error_at(o.elem(), "wrap_mode '" + quote_input(wrap) + "' is not supported (repeat)");
