@@ -1,6 +1,9 @@
 #include "integrators/bdpt/bdpt_integrator.h"
 
+#include <algorithm>
+
 #include "integrators/bdpt/bdpt_tracer.h"
+#include "integrators/raw_result.h"
 #include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
@@ -34,26 +37,42 @@ RenderResult BdptIntegrator::render(const scene::Scene& scene, const RenderOptio
       },
       [&](int64_t, bool) { merger.finish_pass(); });
 
-  // Light paths traced = camera samples taken (one light subpath per camera sample).
-  double light_paths = 0;
-  for (size_t i = 0; i < sched.tiles.size(); ++i) {
-    const Tile& t = sched.tiles[i];
-    light_paths += double(sched.tile_spp[i]) * double((t.x1 - t.x0) * (t.y1 - t.y0));
-  }
-  const double splat_scale = light_paths > 0 ? double(w) * double(h) / light_paths : 0.0;
-  RenderResult result;
-  core::Image img(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * size_t(w) + size_t(x);
-      const int64_t n = sched.spp_at(x, y);
-      Rgbd v = splat_sum[i] * splat_scale;
-      if (n > 0) v += sum[i] / double(n);
-      img(x, y) = v.cast<float>();
-    }
-  result.layers.push_back({"", std::move(img)});
+  core::RawImage raw;
+  raw.width = w;
+  raw.height = h;
+  raw.sums["camera"] = std::move(sum);
+  raw.sums["light"] = std::move(splat_sum);
+  raw.counts["spp"] = spp_counts(sched, w, h);
+  RenderResult result = finish_tiled(*this, std::move(raw), sched, options);
   for (const auto& s : thread_stats) result.stats.merge(s);
-  sched.fill(result);
+  return result;
+}
+
+RenderResult BdptIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  const std::vector<Rgbd>& sum = raw.sum("camera");
+  const std::vector<Rgbd>& splat_sum = raw.sum("light");
+  const std::vector<int64_t>& count = raw.count("spp");
+  // Light paths traced = camera samples taken (one light subpath per camera sample); the
+  // light-tracing splats are divided by their number per pixel of the image.
+  double light_paths = 0;
+  for (const int64_t n : count) light_paths += double(n);
+  const double splat_scale = light_paths > 0 ? double(raw.pixels()) / light_paths : 0.0;
+  RenderResult result;
+  core::Image img(raw.width, raw.height), spp(raw.width, raw.height);
+  result.min_spp = count.empty() ? 0 : count[0];
+  result.max_spp = result.min_spp;
+  for (size_t i = 0; i < count.size(); ++i) {
+    const int64_t n = count[i];
+    Rgbd v = splat_sum[i] * splat_scale;
+    if (n > 0) v += sum[i] / double(n);
+    img[i] = v.cast<float>();
+    spp[i] = Rgb::Constant(float(n));
+    result.min_spp = std::min(result.min_spp, n);
+    result.max_spp = std::max(result.max_spp, n);
+  }
+  result.partial = result.min_spp < options.spp;
+  result.layers.push_back({"", std::move(img)});
+  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
   result.info["light_paths"] = light_paths;
   return result;
 }

@@ -17,6 +17,9 @@ class BdptIntegrator final : public Integrator {
   explicit BdptIntegrator(const BdptSettings& settings) : m_settings(settings) {}
   std::string name() const override { return "bdpt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // --partial / --mpi: the raw sums "camera" and "light" (splats) and the count "spp".
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   BdptSettings m_settings;

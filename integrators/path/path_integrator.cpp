@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "integrators/path/path_tracer.h"
+#include "integrators/raw_result.h"
 #include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
@@ -30,23 +31,10 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
   raw.width = w;
   raw.height = h;
   raw.sums["radiance"] = std::move(sum);
-  auto& count = raw.counts["spp"];
-  count.resize(raw.pixels());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) count[size_t(y) * size_t(w) + size_t(x)] = sched.spp_at(x, y);
+  raw.counts["spp"] = spp_counts(sched, w, h);
   // The image goes through finish() as a merge of --partial files does: same code, same bits.
-  RenderOptions target = options;
-  if (options.time_budget > 0) target.spp = 0;  // a time budget has no spp to fall short of
-  RenderResult result = options.raw ? RenderResult{} : finish(raw, target);
-  const bool has_spp_layer = !result.layers.empty() && result.layers.back().name == "spp";
-  if (sched.partial && !options.raw && !has_spp_layer) result.layers.push_back({"spp", sched.spp_image()});
-  if (options.raw) result.raw = std::move(raw);
+  RenderResult result = finish_tiled(*this, std::move(raw), sched, options);
   for (const auto& s : thread_stats) result.stats.merge(s);
-  result.wall_seconds = sched.seconds;
-  result.min_spp = sched.min_spp();
-  result.max_spp = sched.max_spp();
-  result.partial = sched.partial;
-  result.info["passes"] = sched.passes;
   return result;
 }
 

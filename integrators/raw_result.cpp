@@ -1,0 +1,28 @@
+#include "integrators/raw_result.h"
+
+namespace dp::integrators {
+
+std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int height) {
+  std::vector<int64_t> count(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) count[size_t(y) * size_t(width) + size_t(x)] = sched.spp_at(x, y);
+  return count;
+}
+
+RenderResult finish_tiled(const Integrator& integrator, core::RawImage raw, const ScheduleResult& sched,
+                          const RenderOptions& options) {
+  RenderOptions target = options;
+  if (options.time_budget > 0) target.spp = 0;  // a time budget has no spp to fall short of
+  RenderResult result = options.raw ? RenderResult{} : integrator.finish(raw, target);
+  const bool has_spp_layer = !result.layers.empty() && result.layers.back().name == "spp";
+  if (sched.partial && !options.raw && !has_spp_layer) result.layers.push_back({"spp", sched.spp_image()});
+  if (options.raw) result.raw = std::move(raw);
+  result.wall_seconds = sched.seconds;
+  result.min_spp = sched.min_spp();
+  result.max_spp = sched.max_spp();
+  result.partial = sched.partial;
+  result.info["passes"] = sched.passes;
+  return result;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,23 @@
+// The end of a tile-scheduled render whose accumulation buffers are raw sums (issue 17):
+// with RenderOptions::raw the buffers themselves (for `--partial` and `--mpi`), else the
+// integrator's finish() on them -- the very code a `merge` of partial files runs, so a
+// merged render and a single one give the same bits -- plus the schedule's facts.
+#pragma once
+
+#include <vector>
+
+#include "core/raw_image.h"
+#include "integrators/integrator.h"
+#include "integrators/tile_scheduler.h"
+
+namespace dp::integrators {
+
+// The schedule's per-pixel sample counts (the raw count "spp").
+std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int height);
+
+// finish() with spp 0 for a time budget (no count to fall short of); wall time, spp range,
+// partial and passes from the schedule; the "spp" layer of an interrupted render.
+RenderResult finish_tiled(const Integrator& integrator, core::RawImage raw, const ScheduleResult& sched,
+                          const RenderOptions& options);
+
+}  // namespace dp::integrators
