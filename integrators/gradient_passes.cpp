@@ -103,4 +103,13 @@ void GradientPasses::fill(RenderResult& result) const {
   result.info["render_seconds"] = render_seconds;
 }
 
+RenderResult gradient_finish(const core::RawImage& raw, const RenderOptions& options, float alpha,
+                             const std::string& reconstruction, const core::Json& settings) {
+  core::Timer timer;
+  RenderResult result = gradient_result(gradient_passes_from_raw(raw, options.spp), {}, alpha, reconstruction,
+                                        resolve_threads(options), settings);
+  result.wall_seconds = timer.seconds();
+  return result;
+}
+
 }  // namespace dp::integrators

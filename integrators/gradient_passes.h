@@ -43,6 +43,10 @@ RenderResult gradient_raw_result(const GradientPasses& passes, const std::vector
 // `merge`: the passes of summed raw buffers (partial when a pixel has fewer than `spp`
 // samples), ready for gradient_result.
 GradientPasses gradient_passes_from_raw(const core::RawImage& raw, int spp);
+// finish() of the pass-rendered gradient integrators (gpt, gbdpt): gradient_result of the
+// summed raw buffers, wall_seconds = its own time.
+RenderResult gradient_finish(const core::RawImage& raw, const RenderOptions& options, float alpha,
+                             const std::string& reconstruction, const core::Json& settings);
 
 // The seed of 1-spp pass `pass` of a time-budgeted render (or of part options.part of
 // options.parts of one: the seed of the single render's pass timed_pass(options, pass)).

@@ -25,10 +25,15 @@ RenderResult GbdptIntegrator::render(const scene::Scene& scene, const RenderOpti
         counters.flush(thread_stats[size_t(thread)]);
       });
 
-  RenderResult result =
-      gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+  RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
+                                    : gradient_result(passes, thread_stats, m_settings.alpha,
+                                                      m_settings.reconstruction, threads, m_json);
   result.wall_seconds = timer.seconds();
   return result;
+}
+
+RenderResult GbdptIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
 }
 
 }  // namespace dp::integrators

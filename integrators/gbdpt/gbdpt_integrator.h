@@ -17,6 +17,9 @@ class GbdptIntegrator final : public Integrator {
       : m_settings(GbdptSettings::read(settings)), m_json(settings.to_json()) {}
   std::string name() const override { return "gbdpt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // --partial / --mpi: the raw primal, dx, dy and direct sums and counts (gradient_passes.h).
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GbdptSettings m_settings;

@@ -36,11 +36,7 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
 }
 
 RenderResult GptIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
-  core::Timer timer;
-  RenderResult result = gradient_result(gradient_passes_from_raw(raw, options.spp), {}, m_settings.alpha,
-                                        m_settings.reconstruction, resolve_threads(options), m_json);
-  result.wall_seconds = timer.seconds();
-  return result;
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
 }
 
 }  // namespace dp::integrators
