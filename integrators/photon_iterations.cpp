@@ -17,7 +17,11 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  const int64_t target = timed ? 0 : std::max(options.spp, 0);
+  // Part k of n (render --part/--mpi, issue 17) runs the global iterations k, k + n, ...:
+  // each a whole iteration (its photon map needs every light path) with its own index's
+  // radius and streams, so the parts' summed buffers are the single render's.
+  const int64_t parts = std::max(1, options.parts), part = options.part;
+  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
   const int64_t tiles = int64_t(tiles_x) * tiles_y;
 
@@ -36,7 +40,8 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
       out.passes.partial = true;
       break;
     }
-    const VcmIteration it = iteration(done);
+    const int64_t global = part + done * parts;
+    const VcmIteration it = iteration(global);
     VcmLightCounters lc;
     if (!trace_light_paths(scene, light_settings, it, pixels, threads, options.stop, light, lc)) {
       out.passes.partial = true;
@@ -55,7 +60,7 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
         [&](int64_t ti, int thread) {
           const int x0 = int(ti % tiles_x) * kTileSize, y0 = int(ti / tiles_x) * kTileSize;
           const Tile tile{int(ti), x0, y0, std::min(w, x0 + kTileSize), std::min(h, y0 + kTileSize)};
-          core::Rng rng(options.seed, (uint64_t(done) << 32) | 0x80000000ull | uint64_t(ti));
+          core::Rng rng(options.seed, (uint64_t(global) << 32) | 0x80000000ull | uint64_t(ti));
           tile_fn(tile, rng, thread, buffers[size_t(thread)], iter_stats[size_t(thread)]);
           tile_done[size_t(ti)] = 1;
         },

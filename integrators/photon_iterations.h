@@ -5,7 +5,8 @@
 // full-image gradients::GradientBuffers (pairs and splats cross tile borders). A complete
 // iteration's buffers and counters are merged into the totals; an interrupted one is
 // dropped whole, so a partial render is the average of complete iterations. `--spp` =
-// iterations; `--time` runs whole iterations until the budget is used.
+// iterations; `--time` runs whole iterations until the budget is used. Part k of n
+// (RenderOptions::part/parts) runs the global iterations k, k + n, k + 2n, ...
 #pragma once
 
 #include <functional>

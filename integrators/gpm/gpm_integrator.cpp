@@ -43,8 +43,9 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
             scratch);
       });
 
-  RenderResult result =
-      gradient_result(run.passes, run.thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+  RenderResult result = options.raw ? gradient_raw_result(run.passes, run.thread_stats)
+                                    : gradient_result(run.passes, run.thread_stats, m_settings.alpha,
+                                                      m_settings.reconstruction, threads, m_json);
   result.stats.add("gpm.iterations", run.passes.kept);
   result.stats.add("gpm.light_paths", run.passes.kept * pixels);
   result.stats.add("gpm.light_vertices", run.light.light_vertices);
@@ -54,6 +55,10 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
   result.info["radius_final_factor"] = double(m_settings.radius_scale) * last_shrink;
   result.wall_seconds = timer.seconds();
   return result;
+}
+
+RenderResult GpmIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
 }
 
 }  // namespace dp::integrators

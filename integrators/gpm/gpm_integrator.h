@@ -21,6 +21,10 @@ class GpmIntegrator final : public Integrator {
   GpmIntegrator(const GpmSettings& settings, core::Json json) : m_settings(settings), m_json(std::move(json)) {}
   std::string name() const override { return "gpm"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // --partial / --mpi: iterations split between the parts (photon_iterations.h), raw
+  // gradient buffers as gpt's.
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GpmSettings m_settings;

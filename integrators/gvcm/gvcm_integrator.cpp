@@ -40,8 +40,9 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
                                          scratch);
       });
 
-  RenderResult result =
-      gradient_result(run.passes, run.thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+  RenderResult result = options.raw ? gradient_raw_result(run.passes, run.thread_stats)
+                                    : gradient_result(run.passes, run.thread_stats, m_settings.alpha,
+                                                      m_settings.reconstruction, threads, m_json);
   result.stats.add("gvcm.iterations", run.passes.kept);
   result.stats.add("gvcm.light_paths", run.passes.kept * pixels);
   result.stats.add("gvcm.light_vertices", run.light.light_vertices);
@@ -50,6 +51,10 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
   result.info["radius_final"] = double(run.last_radius);
   result.wall_seconds = timer.seconds();
   return result;
+}
+
+RenderResult GvcmIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
 }
 
 }  // namespace dp::integrators

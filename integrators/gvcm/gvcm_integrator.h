@@ -19,6 +19,10 @@ class GvcmIntegrator final : public Integrator {
   GvcmIntegrator(const GvcmSettings& settings, core::Json json) : m_settings(settings), m_json(std::move(json)) {}
   std::string name() const override { return "gvcm"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // --partial / --mpi: iterations split between the parts (photon_iterations.h), raw
+  // gradient buffers as gpt's.
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GvcmSettings m_settings;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `render --partial --part K/N` + `merge` (issue 17): the merged parts of a render equal
 # the single-process render bit for bit (same (pass, tile) work units and random streams,
-# tile_scheduler.h) for `path`, `gpt`, `bdpt` and `gbdpt` (every layer, the Poisson reconstructions
+# tile_scheduler.h) for `path`, `gpt`, `bdpt`, `gbdpt`, `gpm` and `gvcm` (every layer, the Poisson reconstructions
 # included), with every pixel's count summed to --spp; incompatible files (integrator,
 # setting, seed, scene) and a repeated part are refused with one line naming the
 # difference; time-budgeted parts merge; misuse of the options is a one-line error.
@@ -35,7 +35,7 @@ same_exr() {
 sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path gpt bdpt gbdpt; do
+for integrator in path gpt bdpt gbdpt gpm gvcm; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=("$bin" render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
@@ -68,7 +68,7 @@ check "gpt: merged sidecar sums the parts' counters" \
 # Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
 # own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
 # the merge has every pixel sampled and is not partial.
-for integrator in path gpt bdpt gbdpt; do
+for integrator in path gpt bdpt gbdpt gpm gvcm; do
   for k in 1 2; do
     "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
       --partial --part $k/2 --out "$tmp/t$integrator$k.exr"
