@@ -43,6 +43,8 @@ class GridOperator final : public ChunkedOperator {
   const float* weights_y() const { return m_wy.data(); }
   const float* data_weights() const { return m_data.data(); }
   const float* diagonal() const { return m_diag.data(); }
+  // 1 / diagonal (0 where the diagonal is 0).
+  const float* inverse_diagonal() const { return m_inv_diag.data(); }
   size_t pixels() const override { return size_t(m_w) * size_t(m_h); }
   size_t chunks() const override { return m_chunk_rows.size() - 1; }
   size_t chunk_begin(size_t c) const override { return size_t(m_chunk_rows[c]) * size_t(m_w); }
@@ -70,6 +72,7 @@ class GridOperator final : public ChunkedOperator {
   std::vector<float> m_wx, m_wy;   // per pixel: weight of its dx / dy row (0 if absent)
   std::vector<float> m_data;       // alpha^2 p_i
   std::vector<float> m_diag;       // sum of the pixel's row weights + alpha^2 p_i
+  std::vector<float> m_inv_diag;   // 1 / m_diag (0 where m_diag is 0)
   // Block incomplete Cholesky factor, scaled for short dependency chains in the
   // substitutions: 1/D_i; forward t_i = r_i/D_i + fx_i t_{i-1} + fy_i t_{i-w};
   // backward z_i = t_i + bx_i z_{i+1} + by_i z_{i+w} (zero across chunk borders).
