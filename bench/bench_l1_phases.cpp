@@ -3,9 +3,12 @@
 // clock around each phase. Input: bench_reconstruct's l1_grid case (reconstruct_input.h).
 // Prints one line per reweighting (CG iterations, CPU milliseconds per phase), the totals,
 // and the cost of the CG set-up alone (mg_pcg with 0 iterations) and per iteration.
-// Usage: bench_l1_phases [threads=2] [reweightings=20]
+// Usage: bench_l1_phases [threads=2] [reweightings=20] [separate]
+// (`separate`: set_irls_weights, rhs and mg_pcg's own start instead of the fused
+// GridOperator::reweight_start that solve_l1 uses).
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "bench/reconstruct_input.h"
 #include <ctime>
@@ -41,6 +44,7 @@ class Clock {
 int main(int argc, char** argv) {
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   const int reweightings = argc > 2 ? std::atoi(argv[2]) : 20;
+  const bool separate = argc > 3 && std::string(argv[3]) == "separate";
   const int w = 1280, h = 720;
   const core::Image truth = bench::truth_image(w, h);
   const Problem p = bench::noisy(Kernel::forward_differences(w, h), truth, 1);
@@ -68,11 +72,19 @@ int main(int argc, char** argv) {
   std::printf("reweighting,cg_iterations,weights_ms,rhs_ms,build_ms,cg_ms,cg_setup_ms\n");
   for (int it = 1; it <= reweightings; ++it) {
     const double reg = 0.05 * std::pow(0.5, it - 1);
+    std::vector<Vec4d> row_rr(static_cast<size_t>(h)), row_bb(static_cast<size_t>(h));
     t.reset();
-    A.set_irls_weights(x.data(), p.b, g.data(), reg, p.alpha, nullptr, nullptr, threads);
+    if (separate) {
+      A.set_irls_weights(x.data(), p.b, g.data(), reg, p.alpha, nullptr, nullptr, threads);
+    } else {
+      ws.r.resize(n);
+      ws.z.resize(n);
+      A.reweight_start(x.data(), p.b, g.data(), reg, p.alpha, nullptr, nullptr, ws.r.data(), ws.z.data(),
+                       row_rr.data(), row_bb.data(), threads);
+    }
     const double weights_ms = 1e3 * t.seconds();
     t.reset();
-    A.rhs(p.b, g.data(), rhs.data(), threads);
+    if (separate) A.rhs(p.b, g.data(), rhs.data(), threads);
     const double rhs_ms = 1e3 * t.seconds();
     t.reset();
     M.build(A, threads);
@@ -82,14 +94,18 @@ int main(int argc, char** argv) {
     s.tolerance = o.irls_cg_tolerance;
     s.threads = threads;
     // The set-up alone (residual, norms) on a copy: not part of the solve's time.
-    std::vector<Vec4> copy = x;
-    CgSettings zero = s;
-    zero.max_iterations = 0;
+    double setup_ms = 0.0;
+    if (separate) {
+      std::vector<Vec4> copy = x;
+      CgSettings zero = s;
+      zero.max_iterations = 0;
+      t.reset();
+      mg_pcg(A, M, rhs.data(), copy.data(), zero, &ws);
+      setup_ms = 1e3 * t.seconds();
+    }
+    const CgStart start{row_rr.data(), row_bb.data()};
     t.reset();
-    mg_pcg(A, M, rhs.data(), copy.data(), zero, &ws);
-    const double setup_ms = 1e3 * t.seconds();
-    t.reset();
-    const CgStats st = mg_pcg(A, M, rhs.data(), x.data(), s, &ws);
+    const CgStats st = mg_pcg(A, M, rhs.data(), x.data(), s, &ws, separate ? nullptr : &start);
     const double cg_ms = 1e3 * t.seconds();
     std::printf("%d,%d,%.1f,%.1f,%.1f,%.1f,%.1f\n", it, st.iterations, weights_ms, rhs_ms, build_ms, cg_ms, setup_ms);
     sum_weights += weights_ms;

@@ -28,6 +28,18 @@ class GridOperator final : public ChunkedOperator {
   // the raw weights.
   double set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
                           const float* user_rows, const float* user_pixels, int threads);
+  // One IRLS reweighting as set_irls_weights() fused with the start of the CG that
+  // follows (grid_irls.cpp; one pass over the image instead of six): the weights are left
+  // unnormalized (the mean-1 normalization scales A and the right-hand side alike, so the
+  // solution is the same) and the right-hand side rhs = H^T W b + alpha^2 P g is not
+  // stored. Writes r = rhs - A x, z = r / d on the pixels with (x + y) even and 0 on the
+  // others (the multigrid V-cycle's first red half-step, multigrid.h), and per image row
+  // the sums of r.r and rhs.rhs (row_rr, row_bb: height() each). Sets the diagonal and its
+  // inverse, not the incomplete Cholesky factor. Results do not depend on the thread
+  // count. Returns the sum of the raw weights.
+  double reweight_start(const Vec4* x, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
+                        const float* user_rows, const float* user_pixels, Vec4* r, Vec4* z, Vec4d* row_rr,
+                        Vec4d* row_bb, int threads);
   // Whether set_weights / set_irls_weights also factor the block incomplete Cholesky
   // preconditioner (default true; precondition()/update() need it). The multigrid
   // solver (multigrid.h) only needs the diagonal.
