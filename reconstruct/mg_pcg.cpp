@@ -1,12 +1,12 @@
 // mg_pcg (multigrid.h): CG on the grid operator preconditioned by the multigrid V-cycle.
+// Per iteration: the V-cycle (two pipelined passes over level 0), the direction
+// p = z + beta p_old with q = A p and p.q, and the update x += alpha p, r -= alpha q with
+// the next V-cycle's first red half-step.
 //
-// Per iteration three passes over the image (they are memory bound): the V-cycle's
-// upward half (correction, post-smoothing, r.z), the direction p = z + beta p_old with
-// p.Ap, and the update x += alpha p, r -= alpha A p fused into the next V-cycle's
-// downward half (its first red half-step, pre-smoothing and restriction). A p is
-// recomputed in the update instead of being stored (a row of the stencil costs less
-// than writing and reading back a vector). When the update ends the CG run, that
-// downward half was done for nothing: one pass per run.
+// (Tried for issue 18: fusing the update into the next V-cycle's first pass, with A p
+// recomputed there instead of stored. IRLS runs end after ~2 iterations on average and
+// the fused pass is wasted when the run ends, so it measured ~10% more CPU time per
+// iteration single-threaded; dropped, bench/RESULTS.md.)
 #include <algorithm>
 #include <barrier>
 #include <cmath>
@@ -20,8 +20,8 @@ namespace dp::reconstruct {
 namespace {
 
 // out = A v on row y of the grid operator; up / down are rows y-1 / y+1 of v (nullptr at
-// the image border).
-void stencil_row(const GridOperator& A, int y, const Vec4* up, const Vec4* mid, const Vec4* down, Vec4* out) {
+// the image border). Returns sum v . (A v) over the row.
+Vec4d stencil_row(const GridOperator& A, int y, const Vec4* up, const Vec4* mid, const Vec4* down, Vec4* out) {
   const int w = A.width();
   const size_t base = size_t(y) * size_t(w);
   const float* wx = A.weights_x() + base;
@@ -44,11 +44,8 @@ void stencil_row(const GridOperator& A, int y, const Vec4* up, const Vec4* mid, 
   } else {
     for (int i = 0; i < w; ++i) pixel(i);
   }
-}
-
-Vec4d row_dot(const Vec4* a, const Vec4* b, int w) {
   Vec4d s;
-  for (int i = 0; i < w; ++i) accumulate(s, a[i] * b[i]);
+  for (int i = 0; i < w; ++i) accumulate(s, mid[i] * out[i]);
   return s;
 }
 
@@ -57,18 +54,19 @@ Vec4d row_dot(const Vec4* a, const Vec4* b, int w) {
 CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x, const CgSettings& settings,
                CgWorkspace* workspace, const CgStart* start) {
   DP_CHECK(settings.max_iterations >= 0, "max_iterations must be >= 0");
-  DP_CHECK(!M.levels().empty() && M.levels()[0].w == A.width() && M.levels()[0].h == A.height(),
-           "mg_pcg: multigrid not built for this operator");
   DP_CHECK(!start || (workspace && workspace->r.size() == A.pixels() && workspace->z.size() == A.pixels()),
            "mg_pcg: a given start needs the workspace holding r and z");
   DP_CHECK(start || rhs, "mg_pcg: no right-hand side");
+  DP_CHECK(!M.levels().empty() && M.levels()[0].w == A.width() && M.levels()[0].h == A.height(),
+           "mg_pcg: multigrid not built for this operator");
   const int w = A.width(), h = A.height();
   const size_t n = A.pixels();
   CgWorkspace local;
   CgWorkspace& ws = workspace ? *workspace : local;
-  for (std::vector<Vec4>* v : {&ws.r, &ws.z, &ws.pa, &ws.pb}) v->resize(n);
+  for (std::vector<Vec4>* v : {&ws.r, &ws.z, &ws.q, &ws.pa, &ws.pb}) v->resize(n);
   Vec4* r = ws.r.data();
   Vec4* z = ws.z.data();
+  Vec4* q = ws.q.data();
   Vec4* p_old = ws.pa.data();
   Vec4* p_new = ws.pb.data();
 
@@ -78,8 +76,7 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
   const int threads = std::max(1, std::min(resolve_threads(settings.threads), units));
   std::vector<int> rows(size_t(threads) + 1);
   for (int t = 0; t <= threads; ++t) rows[size_t(t)] = std::min(h, int(part_begin(size_t(units), threads, t)) * align);
-  // Per thread: two halo rows of p and one row of A p.
-  ws.scratch.resize(3 * size_t(w) * size_t(threads));
+  ws.scratch.resize(2 * size_t(w) * size_t(threads));
   // Per-row partial sums, added in row order: the result does not depend on the split.
   const size_t hs = static_cast<size_t>(h);
   std::vector<Vec4d> row_rz(hs), row_pq(hs), row_rr(hs), row_bb(hs);
@@ -92,14 +89,13 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
   const std::function<void()> sync = threads > 1 ? std::function<void()>([&] { barrier.arrive_and_wait(); })
                                                  : std::function<void()>([] {});
   const GridMultigrid::Level& L0 = M.levels()[0];
-  // z = the V-cycle's first red half-step of r on row y (fused into the CG update).
+  // z = the V-cycle's first red half-sweep of r on row y (fused into the CG update).
   const auto first_red = [&](int y) {
     const size_t base = size_t(y) * size_t(w);
     const float* id = L0.inv_diag + base;
     const Vec4 zero = {};
     for (int i = 0; i < w; ++i) z[base + size_t(i)] = ((i + y) & 1) ? zero : r[base + size_t(i)] * id[i];
   };
-  const auto row_of = [&](const Vec4* v, int y) { return v + size_t(y) * size_t(w); };
 
   const Vec4 zero = {};
   double rr[3] = {}, bb[3] = {};
@@ -108,30 +104,26 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
 
   run_team(threads, [&](int t) {
     const int y0 = rows[size_t(t)], y1 = rows[size_t(t) + 1];
-    Vec4* halo_up = ws.scratch.data() + 3 * size_t(w) * size_t(t);
+    Vec4* halo_up = ws.scratch.data() + 2 * size_t(w) * size_t(t);
     Vec4* halo_down = halo_up + w;
-    Vec4* ap = halo_down + w;
-    if (start) {
-      for (int y = y0; y < y1; ++y) {
-        row_rr[size_t(y)] = start->row_rr[y];
-        row_bb[size_t(y)] = start->row_bb[y];
+    // r = rhs - A x, the norms of r and rhs, the first red half-step (unless given).
+    for (int y = y0; y < y1 && start; ++y) {
+      row_rr[size_t(y)] = start->row_rr[y];
+      row_bb[size_t(y)] = start->row_bb[y];
+    }
+    for (int y = y0; y < y1 && !start; ++y) {
+      const size_t base = size_t(y) * size_t(w);
+      stencil_row(A, y, y > 0 ? x + base - size_t(w) : nullptr, x + base, y + 1 < h ? x + base + size_t(w) : nullptr,
+                  q + base);
+      Vec4d srr, sbb;
+      for (size_t i = base; i < base + size_t(w); ++i) {
+        r[i] = rhs[i] - q[i];
+        accumulate(srr, r[i] * r[i]);
+        accumulate(sbb, rhs[i] * rhs[i]);
       }
-    } else {
-      // r = rhs - A x, the norms of r and rhs, the first red half-step.
-      for (int y = y0; y < y1; ++y) {
-        stencil_row(A, y, y > 0 ? row_of(x, y - 1) : nullptr, row_of(x, y), y + 1 < h ? row_of(x, y + 1) : nullptr,
-                    ap);
-        Vec4d srr, sbb;
-        const size_t base = size_t(y) * size_t(w);
-        for (int i = 0; i < w; ++i) {
-          r[base + size_t(i)] = rhs[base + size_t(i)] - ap[i];
-          accumulate(srr, r[base + size_t(i)] * r[base + size_t(i)]);
-          accumulate(sbb, rhs[base + size_t(i)] * rhs[base + size_t(i)]);
-        }
-        row_rr[size_t(y)] = srr;
-        row_bb[size_t(y)] = sbb;
-        first_red(y);
-      }
+      row_rr[size_t(y)] = srr;
+      row_bb[size_t(y)] = sbb;
+      first_red(y);
     }
     sync();
     double my_rr[3], my_bb[3], my_limit[3], my_rz[3] = {};
@@ -149,28 +141,9 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
     int my_it = 0;
     Vec4* po = p_old;
     Vec4* pn = p_new;
-    Vec4 alpha = zero;
-    // The CG update on row y: x += alpha p, r -= alpha A p (A p recomputed), r.r, and the
-    // next V-cycle's first red half-step.
-    const std::function<void(int)> update = [&](int y) {
-      stencil_row(A, y, y > 0 ? row_of(pn, y - 1) : nullptr, row_of(pn, y), y + 1 < h ? row_of(pn, y + 1) : nullptr,
-                  ap);
-      const size_t base = size_t(y) * size_t(w);
-      Vec4d srr;
-      for (int i = 0; i < w; ++i) {
-        const size_t k = base + size_t(i);
-        x[k] += alpha * pn[k];
-        r[k] -= alpha * ap[i];
-        accumulate(srr, r[k] * r[k]);
-      }
-      row_rr[size_t(y)] = srr;
-      first_red(y);
-    };
-    bool down_done = false;  // the V-cycle's downward half already ran with the update
     while (my_it < settings.max_iterations && (my_active[0] || my_active[1] || my_active[2])) {
-      // z = M^-1 r (its first red half-step is already in z) and the row sums of r.z.
-      if (!down_done) M.vcycle_down(r, z, rows, t, threads, sync, nullptr);
-      M.vcycle_up(r, z, rows, t, threads, sync, row_rz.data());
+      // z = M^-1 r (its first red half-sweep is already in z) and the row sums of r.z.
+      M.vcycle(r, z, rows, t, threads, sync, true, row_rz.data());
       sync();
       Vec4 beta = zero;
       {
@@ -180,8 +153,8 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
           if (my_active[c]) my_rz[c] = s[c];
         }
       }
-      // p = z + beta p_old (the first direction is z) and p.Ap. The halo rows of the
-      // neighbouring threads are formed into scratch.
+      // p = z + beta p_old (the first direction is z) and q = A p, p.q. The halo rows of
+      // the neighbouring threads are formed into scratch.
       const bool first = my_it == 0;
       const auto form = [&](int y, Vec4* dst) {
         const size_t base = size_t(y) * size_t(w);
@@ -203,21 +176,26 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
           down = halo_down;
         }
         const Vec4* up = y == 0 ? nullptr : y == y0 ? halo_up : mid - w;
-        stencil_row(A, y, up, mid, down, ap);
-        row_pq[size_t(y)] = row_dot(mid, ap, w);
+        row_pq[size_t(y)] = stencil_row(A, y, up, mid, down, q + size_t(y) * size_t(w));
       }
       sync();
+      Vec4 alpha = zero;
       {
         const Vec4d pq = total(row_pq);
         for (int c = 0; c < 3; ++c) alpha[c] = my_active[c] && pq[c] > 0.0 ? float(my_rz[c] / pq[c]) : 0.0f;
       }
-      // The update, fused into the next V-cycle's downward half unless this was the last
-      // iteration allowed.
-      down_done = my_it + 1 < settings.max_iterations;
-      if (down_done)
-        M.vcycle_down(r, z, rows, t, threads, sync, &update);
-      else
-        for (int y = y0; y < y1; ++y) update(y);
+      // x += alpha p, r -= alpha q, r.r, and the next V-cycle's first half-sweep.
+      for (int y = y0; y < y1; ++y) {
+        const size_t base = size_t(y) * size_t(w);
+        Vec4d srr;
+        for (size_t i = base; i < base + size_t(w); ++i) {
+          x[i] += alpha * pn[i];
+          r[i] -= alpha * q[i];
+          accumulate(srr, r[i] * r[i]);
+        }
+        row_rr[size_t(y)] = srr;
+        first_red(y);
+      }
       sync();
       {
         const Vec4d s = total(row_rr);

@@ -205,9 +205,8 @@ namespace {
 
 // One step of a sweep sequence applied to a single row (see run_steps).
 struct Step {
-  enum Kind { first_red, relax, restrict_residual, prolong, dot, custom } kind;
+  enum Kind { first_red, relax, restrict_residual, prolong, dot } kind;
   int color = 0;
-  const std::function<void(int)>* fn = nullptr;  // custom: fn(y)
 };
 
 // Applies steps[0..k) to rows [y0, y1) of level L in one pass: step j runs on row y - j
@@ -244,9 +243,6 @@ void run_steps(const GridMultigrid::Level& L, const Vec4* b, Vec4* x, GridMultig
         row_dot[y] = s;
         break;
       }
-      case Step::custom:
-        (*st.fn)(y);
-        break;
     }
   };
   // The restriction of fine row y also reads back to row y - 2 (its block's first row's
@@ -276,19 +272,19 @@ int GridMultigrid::row_alignment() const {
   return a;
 }
 
-void GridMultigrid::down(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
-                         const std::function<void()>& sync, bool first_red_done, const std::function<void(int)>* before) {
+void GridMultigrid::cycle(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
+                          const std::function<void()>& sync, bool first_red_done, Vec4d* row_dot) {
   const Level& L = m_levels[l];
-  const int y0 = level_row(l, rows, t, threads), y1 = level_row(l, rows, t + 1, threads);
+  const auto range = [&](size_t level, int tt) {
+    return tt == threads ? m_levels[level].h : std::min(m_levels[level].h, rows[size_t(tt)] >> level);
+  };
+  const int y0 = range(l, t), y1 = range(l, t + 1);
   const bool top = y0 > 0 && threads > 1, bottom = y1 < L.h && threads > 1;
   std::vector<Step> steps;
   steps.reserve(size_t(4 * std::max(pre_sweeps, coarsest_sweeps) + 3));
-  if (before)
-    steps.push_back({Step::custom, 0, before});
-  else if (!first_red_done)
-    steps.push_back({Step::first_red, 0});
   if (l + 1 == m_levels.size()) {
     // Coarsest level (one thread): palindromic R B (R B)^(k-1) (B R)^k.
+    if (!first_red_done) steps.push_back({Step::first_red, 0});
     steps.push_back({Step::relax, 1});
     for (int i = 1; i < coarsest_sweeps; ++i) {
       steps.push_back({Step::relax, 0});
@@ -298,76 +294,46 @@ void GridMultigrid::down(size_t l, const Vec4* b, Vec4* x, const std::vector<int
       steps.push_back({Step::relax, 1});
       steps.push_back({Step::relax, 0});
     }
-    run_steps(L, b, x, nullptr, steps.data(), int(steps.size()), y0, y1, top, bottom, sync, nullptr);
+    if (row_dot) steps.push_back({Step::dot, 0});
+    run_steps(L, b, x, nullptr, steps.data(), int(steps.size()), y0, y1, top, bottom, sync, row_dot);
     return;
   }
+  Level& C = m_levels[l + 1];
   // Pre-smoothing (red, black) x pre_sweeps from x = 0, then the residual summed into
   // the coarse right-hand side, all in one pass.
+  if (!first_red_done) steps.push_back({Step::first_red, 0});
   steps.push_back({Step::relax, 1});
   for (int i = 1; i < pre_sweeps; ++i) {
     steps.push_back({Step::relax, 0});
     steps.push_back({Step::relax, 1});
   }
   steps.push_back({Step::restrict_residual, 0});
-  run_steps(L, b, x, &m_levels[l + 1], steps.data(), int(steps.size()), y0, y1, top, bottom, sync, nullptr);
-}
-
-void GridMultigrid::up(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
-                       const std::function<void()>& sync, Vec4d* row_dot) {
-  const Level& L = m_levels[l];
-  const int y0 = level_row(l, rows, t, threads), y1 = level_row(l, rows, t + 1, threads);
-  const bool top = y0 > 0 && threads > 1, bottom = y1 < L.h && threads > 1;
-  std::vector<Step> steps;
-  steps.reserve(size_t(2 * pre_sweeps + 2));
-  if (l + 1 < m_levels.size()) {
-    Level& C = m_levels[l + 1];
-    sync();
-    if (threads == 1 || pixels(C) < serial_pixels) {
-      if (t == 0) {
-        const std::function<void()> none = [] {};
-        const std::vector<int> one = {0, C.h << (l + 1)};
-        cycle(l + 1, C.b.data(), C.x.data(), one, 0, 1, none, false, nullptr);
-      }
-    } else {
-      cycle(l + 1, C.b.data(), C.x.data(), rows, t, threads, sync, false, nullptr);
+  run_steps(L, b, x, &C, steps.data(), int(steps.size()), y0, y1, top, bottom, sync, nullptr);
+  sync();
+  if (threads == 1 || pixels(C) < serial_pixels) {
+    if (t == 0) {
+      const std::function<void()> none = [] {};
+      const std::vector<int> one = {0, C.h << (l + 1)};
+      cycle(l + 1, C.b.data(), C.x.data(), one, 0, 1, none, false, nullptr);
     }
-    sync();
-    // Coarse correction and post-smoothing (black, red) x pre_sweeps, one pass.
-    steps.push_back({Step::prolong, 0});
-    for (int i = 0; i < pre_sweeps; ++i) {
-      steps.push_back({Step::relax, 1});
-      steps.push_back({Step::relax, 0});
-    }
+  } else {
+    cycle(l + 1, C.b.data(), C.x.data(), rows, t, threads, sync, false, nullptr);
+  }
+  sync();
+  // Coarse correction and post-smoothing (black, red) x pre_sweeps, one pass.
+  steps.clear();
+  steps.push_back({Step::prolong, 0});
+  for (int i = 0; i < pre_sweeps; ++i) {
+    steps.push_back({Step::relax, 1});
+    steps.push_back({Step::relax, 0});
   }
   if (row_dot) steps.push_back({Step::dot, 0});
-  if (!steps.empty())
-    run_steps(L, b, x, l + 1 < m_levels.size() ? &m_levels[l + 1] : nullptr, steps.data(), int(steps.size()), y0,
-              y1, top, bottom, sync, row_dot);
-}
-
-void GridMultigrid::cycle(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
-                          const std::function<void()>& sync, bool first_red_done, Vec4d* row_dot) {
-  down(l, b, x, rows, t, threads, sync, first_red_done, nullptr);
-  up(l, b, x, rows, t, threads, sync, row_dot);
-}
-
-int GridMultigrid::level_row(size_t l, const std::vector<int>& rows, int t, int threads) const {
-  return t == threads ? m_levels[l].h : std::min(m_levels[l].h, rows[size_t(t)] >> l);
+  run_steps(L, b, x, &C, steps.data(), int(steps.size()), y0, y1, top, bottom, sync, row_dot);
 }
 
 void GridMultigrid::vcycle(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
                            const std::function<void()>& sync, bool first_red_done, Vec4d* row_dot) {
   cycle(0, r, z, rows, t, threads, sync, first_red_done, row_dot);
-}
-
-void GridMultigrid::vcycle_down(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
-                                const std::function<void()>& sync, const std::function<void(int)>* before) {
-  down(0, r, z, rows, t, threads, sync, true, before);
-}
-
-void GridMultigrid::vcycle_up(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
-                              const std::function<void()>& sync, Vec4d* row_dot) {
-  up(0, r, z, rows, t, threads, sync, row_dot);
 }
 
 void GridMultigrid::apply(const Vec4* r, Vec4* z) {

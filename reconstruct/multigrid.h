@@ -76,30 +76,12 @@ class GridMultigrid {
   void vcycle(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
               const std::function<void()>& sync, bool first_red_done, Vec4d* row_dot);
 
-  // vcycle() in two halves, so that the caller can fuse work into the V-cycle's first
-  // pass over level 0 (mg_pcg fuses its CG update): vcycle_down() is level 0's
-  // pre-smoothing and restriction, vcycle_up() the coarse levels, the correction and the
-  // post-smoothing. If before != nullptr, vcycle_down() first calls (*before)(y) on each of
-  // the thread's rows y in order, which must leave row y of r final and row y of z
-  // holding the first red half-step (see vcycle); rows y-1 and y+1 may still be pending.
-  // Otherwise z already holds it for every row.
-  void vcycle_down(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
-                   const std::function<void()>& sync, const std::function<void(int)>* before);
-  void vcycle_up(const Vec4* r, Vec4* z, const std::vector<int>& rows, int t, int threads,
-                 const std::function<void()>& sync, Vec4d* row_dot);
-
   // Row alignment vcycle() needs of the level-0 thread split.
   int row_alignment() const;
 
  private:
   void cycle(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
              const std::function<void()>& sync, bool first_red_done, Vec4d* row_dot);
-  void down(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
-            const std::function<void()>& sync, bool first_red_done, const std::function<void(int)>* before);
-  void up(size_t l, const Vec4* b, Vec4* x, const std::vector<int>& rows, int t, int threads,
-          const std::function<void()>& sync, Vec4d* row_dot);
-  // First row of thread t's share of level l (the level's height for t == threads).
-  int level_row(size_t l, const std::vector<int>& rows, int t, int threads) const;
   std::vector<Level> m_levels;
   size_t m_built_coarsest = 0;
 };

@@ -1,6 +1,6 @@
-// mg_pcg's fused passes (mg_pcg.cpp, issue 18): the CG update fused into the next
-// V-cycle's downward half, A p recomputed instead of stored, and the run ending after
-// any number of iterations, against a textbook PCG that applies the same V-cycle
+// mg_pcg (mg_pcg.cpp, issue 18) with its fused passes (the V-cycle's first red
+// half-step inside the CG update, p formed inside q = A p) and a run ending after any
+// number of iterations, against a textbook PCG that applies the same V-cycle
 // (GridMultigrid::apply) and the operator one step at a time.
 #include <catch2/catch.hpp>
 
