@@ -16,30 +16,14 @@
 #include <ctime>
 #include <vector>
 
-#include "core/rng.h"
+#include "bench/reconstruct_input.h"
 #include "reconstruct/solve.h"
 
 using namespace dp;
 using namespace dp::reconstruct;
+using dp::bench::rmse;
 
 namespace {
-
-core::Image truth_image(int w, int h) {
-  core::Image img(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float u = float(x) / float(w), v = float(y) / float(h);
-      Rgb c(0.2f + 0.5f * u, 0.3f + 0.4f * v * v, 0.5f + 0.3f * std::sin(12.0f * u + 5.0f * v));
-      if ((x / 160 + y / 120) % 2) c += Rgb(0.5f, 0.2f, 0.1f);
-      img(x, y) = c;
-    }
-  return img;
-}
-
-float gaussian(core::Rng& rng) {
-  const double u1 = 1.0 - rng.uniform_double(), u2 = rng.uniform_double();
-  return float(std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPiD * u2));
-}
 
 // Forward differences plus both diagonals: 4 pairs per pixel (fewer at the border).
 Kernel four_pair_kernel(int w, int h) {
@@ -54,23 +38,6 @@ Kernel four_pair_kernel(int w, int h) {
       if (x > 0 && y + 1 < h) pairs.push_back({i, i + w - 1});
     }
   return Kernel(w, h, std::move(pairs));
-}
-
-Problem noisy(const Kernel& k, const core::Image& truth, uint64_t seed) {
-  Problem p;
-  p.kernel = k;
-  p.primal = truth;
-  p.b = apply_kernel(k, truth);
-  core::Rng rng(seed, 0);
-  for (auto& v : p.primal.pixels()) v += 0.2f * Rgb(gaussian(rng), gaussian(rng), gaussian(rng));
-  for (auto& v : p.b) v += 0.02f * Rgb(gaussian(rng), gaussian(rng), gaussian(rng));
-  return p;
-}
-
-double rmse(const core::Image& a, const core::Image& b) {
-  double s = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) s += double((a[i] - b[i]).matrix().squaredNorm());
-  return std::sqrt(s / double(3 * a.size()));
 }
 
 double median(std::vector<double> v) {
@@ -92,9 +59,9 @@ int main(int argc, char** argv) {
   const int repeats = std::max(1, argc > 2 ? std::atoi(argv[2]) : 3);
   const std::string filter = argc > 3 ? argv[3] : "";
   const int w = 1280, h = 720;
-  const core::Image truth = truth_image(w, h);
-  const Problem grid = noisy(Kernel::forward_differences(w, h), truth, 1);
-  const Problem four = noisy(four_pair_kernel(w, h), truth, 2);
+  const core::Image truth = bench::truth_image(w, h);
+  const Problem grid = bench::noisy(Kernel::forward_differences(w, h), truth, 1);
+  const Problem four = bench::noisy(four_pair_kernel(w, h), truth, 2);
   std::printf("case,width,height,threads,seconds,cg_iterations,relative_residual,rmse,min_seconds,cpu_seconds\n");
   const auto run = [&](const char* name, const Problem& p, bool l1, L2Method method,
                        GridSolver grid_solver = GridSolver::multigrid) {

@@ -25,6 +25,7 @@ GridOperator::GridOperator(int width, int height)
   m_wy.assign(n, 0.0f);
   m_data.assign(n, 0.0f);
   m_diag.assign(n, 0.0f);
+  m_inv_diag.assign(n, 0.0f);
   m_inv_pivot.assign(n, 0.0f);
   m_fx.assign(n, 0.0f);
   m_fy.assign(n, 0.0f);
@@ -134,6 +135,7 @@ void GridOperator::factor(int threads) {
           if (x > 0) d += double(m_wx[i - 1]);
           if (y > 0) d += double(m_wy[i - size_t(w)]);
           m_diag[i] = float(d);
+          m_inv_diag[i] = m_diag[i] > 0.0f ? 1.0f / m_diag[i] : 0.0f;
           if (!m_factor_ic) continue;
           double piv = double(m_diag[i]);
           // (Modified IC, which also subtracts the dropped fill, needed more CG iterations

@@ -28,6 +28,18 @@ class GridOperator final : public ChunkedOperator {
   // the raw weights.
   double set_irls_weights(const Vec4* image, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
                           const float* user_rows, const float* user_pixels, int threads);
+  // One IRLS reweighting as set_irls_weights() fused with the start of the CG that
+  // follows (grid_irls.cpp; one pass over the image instead of six): the weights are left
+  // unnormalized (the mean-1 normalization scales A and the right-hand side alike, so the
+  // solution is the same) and the right-hand side rhs = H^T W b + alpha^2 P g is not
+  // stored. Writes r = rhs - A x, z = r / d on the pixels with (x + y) even and 0 on the
+  // others (the multigrid V-cycle's first red half-step, multigrid.h), and per image row
+  // the sums of r.r and rhs.rhs (row_rr, row_bb: height() each). Sets the diagonal and its
+  // inverse, not the incomplete Cholesky factor. Results do not depend on the thread
+  // count. Returns the sum of the raw weights.
+  double reweight_start(const Vec4* x, const std::vector<Rgb>& b, const Vec4* g, double reg, float alpha,
+                        const float* user_rows, const float* user_pixels, Vec4* r, Vec4* z, Vec4d* row_rr,
+                        Vec4d* row_bb, int threads);
   // Whether set_weights / set_irls_weights also factor the block incomplete Cholesky
   // preconditioner (default true; precondition()/update() need it). The multigrid
   // solver (multigrid.h) only needs the diagonal.
@@ -43,6 +55,8 @@ class GridOperator final : public ChunkedOperator {
   const float* weights_y() const { return m_wy.data(); }
   const float* data_weights() const { return m_data.data(); }
   const float* diagonal() const { return m_diag.data(); }
+  // 1 / diagonal (0 where the diagonal is 0).
+  const float* inverse_diagonal() const { return m_inv_diag.data(); }
   size_t pixels() const override { return size_t(m_w) * size_t(m_h); }
   size_t chunks() const override { return m_chunk_rows.size() - 1; }
   size_t chunk_begin(size_t c) const override { return size_t(m_chunk_rows[c]) * size_t(m_w); }
@@ -70,6 +84,7 @@ class GridOperator final : public ChunkedOperator {
   std::vector<float> m_wx, m_wy;   // per pixel: weight of its dx / dy row (0 if absent)
   std::vector<float> m_data;       // alpha^2 p_i
   std::vector<float> m_diag;       // sum of the pixel's row weights + alpha^2 p_i
+  std::vector<float> m_inv_diag;   // 1 / m_diag (0 where m_diag is 0)
   // Block incomplete Cholesky factor, scaled for short dependency chains in the
   // substitutions: 1/D_i; forward t_i = r_i/D_i + fx_i t_{i-1} + fy_i t_{i-w};
   // backward z_i = t_i + bx_i z_{i+1} + by_i z_{i+w} (zero across chunk borders).

@@ -45,7 +45,8 @@ class GridMultigrid {
     const float* wy = nullptr;
     const float* diag = nullptr;
     const float* data = nullptr;
-    std::vector<float> own_wx, own_wy, own_diag, own_data, inv_diag;
+    const float* inv_diag = nullptr;
+    std::vector<float> own_wx, own_wy, own_diag, own_data, own_inv_diag;
     std::vector<Vec4> x, b;  // coarse levels: correction and right-hand side
   };
 
@@ -85,9 +86,19 @@ class GridMultigrid {
   size_t m_built_coarsest = 0;
 };
 
+// A CG start computed by the caller (GridOperator::reweight_start): the workspace's r
+// holds rhs - A x, its z the V-cycle's first red half-step of r (r / d on the pixels with
+// (x + y) even, 0 on the others), and row_rr / row_bb per image row the sums of r.r and
+// rhs.rhs.
+struct CgStart {
+  const Vec4d* row_rr = nullptr;
+  const Vec4d* row_bb = nullptr;
+};
+
 // Multigrid-preconditioned CG on A x = rhs (x = initial guess, warm start). `M` must have
-// been built from A's current weights.
+// been built from A's current weights. With `start` (which needs `workspace`), rhs is not
+// read and the start is taken from the workspace and `start`.
 CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x, const CgSettings& settings,
-               CgWorkspace* workspace = nullptr);
+               CgWorkspace* workspace = nullptr, const CgStart* start = nullptr);
 
 }  // namespace dp::reconstruct

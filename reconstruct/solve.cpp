@@ -115,6 +115,24 @@ class Operator {
     }
     return pcg(op(), rhs.data(), x.data(), s, ws);
   }
+  // One IRLS reweighting at x and the warm-started CG that follows, for the multigrid
+  // grid solver: the fused reweight_start (grid_operator.h) replaces setting the weights,
+  // forming the right-hand side and the CG's first residual.
+  CgStats reweight_solve(std::vector<Vec4>& x, const std::vector<Rgb>& b, const std::vector<Vec4>& g4, double reg,
+                         float alpha, const float* user_rows, const float* user_pixels, const CgSettings& s,
+                         CgWorkspace& ws) {
+    const size_t h = size_t(m_grid->height());
+    ws.r.resize(x.size());
+    ws.z.resize(x.size());
+    m_row_rr.resize(h);
+    m_row_bb.resize(h);
+    m_grid->reweight_start(x.data(), b, g4.data(), reg, alpha, user_rows, user_pixels, ws.r.data(), ws.z.data(),
+                           m_row_rr.data(), m_row_bb.data(), s.threads);
+    m_mg->build(*m_grid, s.threads);
+    const CgStart start{m_row_rr.data(), m_row_bb.data()};
+    return mg_pcg(*m_grid, *m_mg, nullptr, x.data(), s, &ws, &start);
+  }
+  bool fused_reweighting() const { return m_mg != nullptr; }
   GridOperator* grid() { return m_grid.get(); }
   const ChunkedOperator& op() const {
     if (m_grid) return *m_grid;
@@ -145,6 +163,7 @@ class Operator {
   std::unique_ptr<GridOperator> m_grid;
   std::unique_ptr<GridMultigrid> m_mg;
   std::unique_ptr<Laplacian> m_csr;
+  std::vector<Vec4d> m_row_rr, m_row_bb;
 };
 
 // H^T b + alpha^2 g for the forward-difference grid (unit weights):
@@ -267,7 +286,14 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
   for (int it = 1; it <= options.reweightings; ++it) {
     // Reference IRLS schedule (ALGORITHMS.md): reg = 0.05 * 0.5^(k-1), w = 1/(|e|_2 + reg).
     const double reg = 0.05 * std::pow(0.5, it - 1);
-    if (GridOperator* grid = A.grid()) {
+    CgSettings cg;
+    cg.max_iterations = options.irls_cg_iterations;
+    cg.tolerance = options.irls_cg_tolerance;
+    cg.threads = threads;
+    if (A.fused_reweighting()) {
+      st = A.reweight_solve(x, in.b, g4, reg, alpha, in.row_w.empty() ? nullptr : in.row_w.data(),
+                            in.pixel_w.empty() ? nullptr : in.pixel_w.data(), cg, workspace);
+    } else if (GridOperator* grid = A.grid()) {
       // The same weights without the kernel's index arrays.
       grid->set_irls_weights(x.data(), in.b, g4.data(), reg, alpha, in.row_w.empty() ? nullptr : in.row_w.data(),
                              in.pixel_w.empty() ? nullptr : in.pixel_w.data(), threads);
@@ -309,12 +335,10 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
       });
       A.set_weights(row_w, pixel_w, alpha, threads);
     }
-    A.rhs(in.b, in.g, g4, rhs, threads);
-    CgSettings s;
-    s.max_iterations = options.irls_cg_iterations;
-    s.tolerance = options.irls_cg_tolerance;
-    s.threads = threads;
-    st = A.solve(rhs, x, s, &workspace);  // warm start from the current image
+    if (!A.fused_reweighting()) {
+      A.rhs(in.b, in.g, g4, rhs, threads);
+      st = A.solve(rhs, x, cg, &workspace);  // warm start from the current image
+    }
     result.cg_iterations += st.iterations;
     result.relative_residual = st.relative_residual;
     result.reweightings = it;

@@ -14,7 +14,8 @@
 //   solve; iteration k >= 1 sets reg = 0.05 * 0.5^(k-1) and per-row weights
 //   1 / (|e_r|_2 + reg) for every gradient row and every primal row (e = residual of
 //   that row at the current image), normalizes them to mean 1, multiplies in the user's
-//   weights, and continues CG from the current image (warm start).
+//   weights, and continues CG from the current image (warm start). (The grid path leaves
+//   out the normalization, which scales the system and its right-hand side alike.)
 //
 // Bad input: dp::ValueError for inconsistent sizes, alpha <= 0 and invalid weights.
 // NaN/Inf in the primal or in b are data, not errors: a row of b with a non-finite
