@@ -22,31 +22,30 @@ void mpi_reduce_and_write(const MpiWorld& world, const integrators::Integrator& 
   facts["passes"] = std::to_string(std::isfinite(passes) ? int64_t(passes) : int64_t(0));
   for (const auto& [k, v] : result.stats.counters()) facts["counter." + k] = std::to_string(v);
   core::Timer timer;
-  const std::vector<std::vector<uint8_t>> all = mpi_gather(core::raw_to_bytes(result.raw, facts));
-  if (world.rank != 0) return;
-
   core::RawImage total;
   core::Json rank_seconds = core::Json::array();
   bool interrupted = false;
   int64_t max_passes = 0, bytes = 0;
   core::Stats counters;
-  for (size_t r = 0; r < all.size(); ++r) {
+  // Rank 0 adds each rank's buffers as they arrive, in rank order (deterministic sums).
+  mpi_gather_each(core::raw_to_bytes(result.raw, facts), [&](int r, const std::vector<uint8_t>& b) {
     std::map<std::string, std::string> f;
-    core::RawImage raw = core::raw_from_bytes(all[r], f);
+    core::RawImage raw = core::raw_from_bytes(b, f);
     if (r == 0) {
       total = std::move(raw);
     } else {
       const std::string diff = total.layout_difference(raw);
       if (!diff.empty()) throw Error("rank " + std::to_string(r) + "'s buffers differ from rank 0's: " + diff);
       total.add(raw);
-      bytes += int64_t(all[r].size());
+      bytes += int64_t(b.size());
     }
     rank_seconds.push_back(std::strtod(f["wall_seconds"].c_str(), nullptr));
     interrupted |= f["interrupted"] == "true";
     max_passes = std::max<int64_t>(max_passes, std::strtoll(f["passes"].c_str(), nullptr, 10));
     for (const auto& [k, v] : f)
       if (k.rfind("counter.", 0) == 0) counters.add(k.substr(8), std::strtoll(v.c_str(), nullptr, 10));
-  }
+  });
+  if (world.rank != 0) return;
   const double gather_seconds = timer.seconds();
   integrators::RenderOptions finish_options = options;
   if (options.time_budget > 0) finish_options.spp = 0;  // a timed render: no count to reach (as merge)

@@ -57,28 +57,28 @@ void mpi_abort(const std::string& message) {
   std::exit(1);
 }
 
-std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine) {
+void mpi_gather_each(const std::vector<uint8_t>& mine,
+                     const std::function<void(int rank, const std::vector<uint8_t>& bytes)>& take) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   uint64_t n = mine.size();
   std::vector<uint64_t> sizes(size_t(size), 0);
   MPI_Gather(&n, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  std::vector<std::vector<uint8_t>> all;
   if (rank != 0) {
     for (uint64_t at = 0; at < n; at += kChunk)
       MPI_Send(mine.data() + at, int(std::min<uint64_t>(kChunk, n - at)), MPI_BYTE, 0, kTag, MPI_COMM_WORLD);
-    return all;
+    return;
   }
-  all.push_back(mine);
+  take(0, mine);
+  std::vector<uint8_t> b;
   for (int r = 1; r < size; ++r) {
-    std::vector<uint8_t> b(size_t(sizes[size_t(r)]));
+    b.resize(size_t(sizes[size_t(r)]));
     for (uint64_t at = 0; at < b.size(); at += kChunk)
       MPI_Recv(b.data() + at, int(std::min<uint64_t>(kChunk, b.size() - at)), MPI_BYTE, r, kTag, MPI_COMM_WORLD,
                MPI_STATUS_IGNORE);
-    all.push_back(std::move(b));
+    take(r, b);
   }
-  return all;
 }
 #else
 MpiWorld mpi_start() {
@@ -90,7 +90,10 @@ void mpi_abort(const std::string& message) {
   std::fprintf(stderr, "deltapath: %s\n", message.c_str());
   std::exit(1);
 }
-std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine) { return {mine}; }
+void mpi_gather_each(const std::vector<uint8_t>& mine,
+                     const std::function<void(int rank, const std::vector<uint8_t>& bytes)>& take) {
+  take(0, mine);
+}
 #endif
 
 }  // namespace dp::apps

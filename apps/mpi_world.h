@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,10 @@ bool under_mpirun();
 MpiWorld mpi_start();
 void mpi_stop();                                    // MPI_Finalize
 [[noreturn]] void mpi_abort(const std::string& message);  // prints the message, MPI_Abort(1)
-// Rank 0: every rank's bytes in rank order (its own first); other ranks: empty.
-std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine);
+// Rank 0 calls `take(r, bytes)` for every rank's bytes in rank order (its own first),
+// receiving one rank's at a time (memory: two ranks' worth, whatever the rank count);
+// the other ranks send theirs and return.
+void mpi_gather_each(const std::vector<uint8_t>& mine,
+                     const std::function<void(int rank, const std::vector<uint8_t>& bytes)>& take);
 
 }  // namespace dp::apps

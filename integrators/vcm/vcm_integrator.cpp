@@ -1,5 +1,6 @@
 #include "integrators/vcm/vcm_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/progress.h"
@@ -41,7 +42,10 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  const int64_t target = timed ? 0 : std::max(options.spp, 0);
+  // Part k of n (--part/--mpi, issue 17): the global iterations k, k + n, ... (as
+  // photon_iterations.h): whole iterations with their global index's radius and streams.
+  const int64_t parts = std::max(1, options.parts), part = options.part;
+  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
   const float r0 = m_settings.radius * (scene.scene_radius() > 0.0f ? scene.scene_radius() : 1.0f);
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
 
@@ -62,11 +66,12 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
       interrupted = true;
       break;
     }
+    const int64_t global = part + done * parts;
     VcmIteration it;
-    it.index = done;
+    it.index = global;
     it.seed = options.seed;
     it.max_depth = options.max_depth;
-    it.radius = float(double(r0) / std::pow(double(done + 1), 0.5 * (1.0 - double(m_settings.radius_alpha))));
+    it.radius = float(double(r0) / std::pow(double(global + 1), 0.5 * (1.0 - double(m_settings.radius_alpha))));
     it.mis.heuristic = m_settings.heuristic;
     it.mis.connections = m_settings.connects();
     it.mis.adaptive_kernel = m_settings.adaptive_kernel;
@@ -95,7 +100,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
           [&](int64_t ti, int thread) {
             const Tile tile{int(ti), int(ti % tiles_x) * kTileSize, int(ti / tiles_x) * kTileSize,
                             std::min(w, int(ti % tiles_x + 1) * kTileSize), std::min(h, int(ti / tiles_x + 1) * kTileSize)};
-            core::Rng rng(options.seed, (uint64_t(done) << 32) | 0x80000000ull | uint64_t(ti));
+            core::Rng rng(options.seed, (uint64_t(global) << 32) | 0x80000000ull | uint64_t(ti));
             VcmCameraScratch& sc = scratch[size_t(thread)];
             VcmCameraCounters& cc = tile_counters[size_t(ti)];
             for (int y = tile.y0; y < tile.y1; ++y)
@@ -129,12 +134,15 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
   }
   progress.finish();
 
-  RenderResult result;
-  core::Image img(w, h);
-  const double inv = done > 0 ? 1.0 / double(done) : 0.0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img(x, y) = (total[size_t(y) * size_t(w) + size_t(x)] * inv).cast<float>();
-  result.layers.push_back({"", std::move(img)});
+  core::RawImage raw;
+  raw.width = w;
+  raw.height = h;
+  raw.sums["radiance"] = std::move(total);
+  raw.counts["spp"].assign(size_t(pixels), done);  // one sample per pixel per iteration
+  RenderOptions finish_options = options;
+  if (timed) finish_options.spp = 0;
+  RenderResult result = options.raw ? RenderResult{} : finish(raw, finish_options);
+  if (options.raw) result.raw = std::move(raw);
   write_counters(totals, done, done * pixels, result.stats);
   result.wall_seconds = timer.seconds();
   result.min_spp = result.max_spp = done;
@@ -144,6 +152,23 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
   result.info["radius_initial"] = double(r0);
   result.info["radius_final"] = double(radius);
   result.info["light_paths"] = double(done * pixels);
+  return result;
+}
+
+RenderResult VcmIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  const std::vector<Rgbd>& sum = raw.sum("radiance");
+  const std::vector<int64_t>& count = raw.count("spp");
+  RenderResult result;
+  core::Image img(raw.width, raw.height);
+  result.min_spp = count.empty() ? 0 : count[0];
+  result.max_spp = result.min_spp;
+  for (size_t i = 0; i < count.size(); ++i) {
+    if (count[i] > 0) img[i] = (sum[i] / double(count[i])).cast<float>();
+    result.min_spp = std::min(result.min_spp, count[i]);
+    result.max_spp = std::max(result.max_spp, count[i]);
+  }
+  result.partial = result.min_spp < options.spp;
+  result.layers.push_back({"", std::move(img)});
   return result;
 }
 

@@ -19,6 +19,9 @@ class VcmIntegrator final : public Integrator {
   explicit VcmIntegrator(const VcmSettings& settings) : m_settings(settings) {}
   std::string name() const override { return "vcm"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // --partial / --mpi: parts split whole iterations; the raw sum "radiance", count "spp".
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   VcmSettings m_settings;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `render --partial --part K/N` + `merge` (issue 17): the merged parts of a render equal
 # the single-process render bit for bit (same (pass, tile) work units and random streams,
-# tile_scheduler.h) for `path`, `gpt`, `bdpt`, `gbdpt`, `gpm` and `gvcm` (every layer, the Poisson reconstructions
+# tile_scheduler.h) for `path`, `gpt`, `bdpt`, `gbdpt`, `vcm`, `gpm` and `gvcm` (every layer, the Poisson reconstructions
 # included), with every pixel's count summed to --spp; incompatible files (integrator,
 # setting, seed, scene) and a repeated part are refused with one line naming the
 # difference; time-budgeted parts merge; misuse of the options is a one-line error.
@@ -35,7 +35,7 @@ same_exr() {
 sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path gpt bdpt gbdpt gpm gvcm; do
+for integrator in path gpt bdpt gbdpt gpm gvcm vcm; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=("$bin" render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
@@ -68,7 +68,7 @@ check "gpt: merged sidecar sums the parts' counters" \
 # Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
 # own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
 # the merge has every pixel sampled and is not partial.
-for integrator in path gpt bdpt gbdpt gpm gvcm; do
+for integrator in path gpt bdpt gbdpt gpm gvcm vcm; do
   for k in 1 2; do
     "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
       --partial --part $k/2 --out "$tmp/t$integrator$k.exr"
@@ -116,7 +116,7 @@ check "merge of 1 of 2 parts is marked partial" json_check "$tmp/half.json" "j['
 
 # Option misuse.
 check "--partial with an integrator without support is refused" \
-  fails_with "integrator vcm does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator vcm --spp 1 --quiet --partial --out "$tmp/misuse.exr"
+  fails_with "integrator mlt does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator mlt --spp 1 --quiet --partial --out "$tmp/misuse.exr"
 check "more parts than work units is refused" \
   fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/misuse.exr"
 "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/misuse.exr" 2>/dev/null

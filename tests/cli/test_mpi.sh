@@ -2,7 +2,7 @@
 # `render --mpi` under mpirun (issue 17): with N ranks on 2 cores (oversubscribed), the
 # image equals the single-process render bit for bit (each rank renders the same
 # (pass, tile) work units as `--part r+1/N`; rank 0 adds the buffers in rank order) for
-# `path`, `gpt`, `bdpt`, `gbdpt`, `gpm`, `gvcm` (every layer, the Poisson reconstructions included), and equals the
+# `path`, `gpt`, `bdpt`, `gbdpt`, `vcm`, `gpm`, `gvcm` (every layer, the Poisson reconstructions included), and equals the
 # merge of the 3 `--partial` files of the same shares; counters are summed over the ranks;
 # a --time render works; an integrator without raw buffers, a rank that dies and
 # --mpi with --partial are loud failures with no image written.
@@ -28,7 +28,7 @@ same_exr() {
 }
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path gpt bdpt gbdpt gpm gvcm; do
+for integrator in path gpt bdpt gbdpt gpm gvcm vcm; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=(render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
