@@ -184,10 +184,47 @@ void roughness(Builder& b, core::Rng& rng, int res) {
   b.camera(Vec3(0, 1.6f, 4.0f), Vec3(0, 0.5f, -0.5f), 50, res);
 }
 
+// Participating media at extreme coefficients: a smoke ball behind an index-matched
+// boundary (sigma 1e-2..1e3 per channel, some channels without scattering, |g| up to
+// 0.99) holding a smaller index-matched ball of another medium (nested boundaries), a
+// glass ball filled with a medium, a thin fog around everything (the camera's medium,
+// unbounded: rays that leave the scene scatter far away), an area and a point light.
+void media(Builder& b, core::Rng& rng, int res) {
+  const int white = b.diffuse(Rgb(0.7f, 0.7f, 0.7f));
+  floor_and_wall(b, white);
+  auto medium = [&](float lo, float hi) {
+    scene::HomogeneousMedium m;
+    for (int c = 0; c < 3; ++c) {
+      m.sigma_s[c] = rng.uniform() < 0.2f ? 0.0f : log_uniform(rng, lo, hi);
+      m.sigma_a[c] = rng.uniform() < 0.5f ? 0.0f : log_uniform(rng, lo, hi);
+    }
+    m.phase.type = scene::PhaseFunctionDesc::Type::hg;
+    m.phase.g = lerp(-0.99f, 0.99f, rng.uniform());
+    return b.s.add_medium(m);
+  };
+  const int null = b.s.add_bsdf(scene::make_null(), "none");
+  const Vec3 c(-0.7f, 0.5f, -0.5f);
+  auto smoke = sphere(c, 0.5f, null);
+  const int smoke_medium = medium(1e-2f, 1e3f);
+  smoke->interior_medium = smoke_medium;
+  b.s.add_shape(std::move(smoke));
+  auto inner = sphere(c + Vec3(0.1f, 0, 0), 0.25f, null);
+  inner->interior_medium = medium(1e-2f, 1e2f);
+  inner->exterior_medium = smoke_medium;
+  b.s.add_shape(std::move(inner));
+  auto glass = sphere(Vec3(0.7f, 0.4f, 0.0f), 0.4f, b.s.add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, MicrofacetType::ggx)));
+  glass->interior_medium = medium(1e-2f, 1e2f);
+  b.s.add_shape(std::move(glass));
+  b.s.set_camera_medium(medium(1e-4f, 1e-1f));
+  b.s.add_shape(quad(Vec3(-0.4f, 2.5f, -0.4f), Vec3(0.8f, 0, 0), Vec3(0, 0, 0.8f), -1), Rgb(15, 15, 15));
+  b.s.add_emitter(std::make_unique<scene::PointEmitter>(Vec3(1.0f, 1.5f, 0.8f), Rgb(3, 3, 3)));
+  b.camera(Vec3(0, 1.2f, 3.5f), Vec3(0, 0.5f, -0.3f), 50, res);
+}
+
 }  // namespace
 
 std::vector<std::string> stress_families() {
-  return {"coincident", "grazing", "concave", "tiny_emitter", "huge_emitter", "specular_chain", "roughness"};
+  return {"coincident", "grazing", "concave", "tiny_emitter", "huge_emitter", "specular_chain", "roughness", "media"};
 }
 
 StressScene make_stress_scene(const std::string& family, int variant, uint64_t seed, int resolution) {
@@ -209,7 +246,8 @@ StressScene make_stress_scene(const std::string& family, int variant, uint64_t s
     case 3: tiny_emitter(b, rng, resolution); break;
     case 4: huge_emitter(b, rng, resolution); break;
     case 5: specular_chain(b, rng, resolution); out.max_depth = 32; break;
-    default: roughness(b, rng, resolution); break;
+    case 6: roughness(b, rng, resolution); break;
+    default: media(b, rng, resolution); out.max_depth = 16; break;
   }
   out.scene->commit();
   return out;

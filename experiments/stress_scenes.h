@@ -13,6 +13,9 @@
 //                  delta chains; max_depth 32)
 //   roughness      rough conductors/dielectrics/plastics with alpha from 0.001 to 1 and
 //                  Phong exponents from 1 to 1e4
+//   media          homogeneous media from 1e-4 to 1e3 per unit length, |g| up to 0.99,
+//                  nested index-matched boundaries, a filled glass ball, an unbounded fog
+//                  (max_depth 16); integrators without media support ignore them
 #pragma once
 
 #include <cstdint>

@@ -9,11 +9,11 @@ std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int heig
   return count;
 }
 
-RenderResult finish_tiled(const Integrator& integrator, core::RawImage raw, const ScheduleResult& sched,
+RenderResult finish_tiled(const FinishFunction& finish, core::RawImage raw, const ScheduleResult& sched,
                           const RenderOptions& options) {
   RenderOptions target = options;
   if (options.time_budget > 0) target.spp = 0;  // a time budget has no spp to fall short of
-  RenderResult result = options.raw ? RenderResult{} : integrator.finish(raw, target);
+  RenderResult result = options.raw ? RenderResult{} : finish(raw, target);
   const bool has_spp_layer = !result.layers.empty() && result.layers.back().name == "spp";
   if (sched.partial && !options.raw && !has_spp_layer) result.layers.push_back({"spp", sched.spp_image()});
   if (options.raw) result.raw = std::move(raw);

@@ -4,6 +4,7 @@
 // merged render and a single one give the same bits -- plus the schedule's facts.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/raw_image.h"
@@ -17,7 +18,8 @@ std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int heig
 
 // finish() with spp 0 for a time budget (no count to fall short of); wall time, spp range,
 // partial and passes from the schedule; the "spp" layer of an interrupted render.
-RenderResult finish_tiled(const Integrator& integrator, core::RawImage raw, const ScheduleResult& sched,
+using FinishFunction = std::function<RenderResult(const core::RawImage& raw, const RenderOptions& options)>;
+RenderResult finish_tiled(const FinishFunction& finish, core::RawImage raw, const ScheduleResult& sched,
                           const RenderOptions& options);
 
 }  // namespace dp::integrators

@@ -13,6 +13,7 @@
 #include "integrators/path/path_integrator.h"
 #include "integrators/pr/pr_integrator.h"
 #include "integrators/vcm/vcm_integrator.h"
+#include "integrators/volpath/volpath_integrator.h"
 
 namespace dp::integrators {
 
@@ -30,7 +31,8 @@ struct Entry {
 
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
-      {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference)"},
+      {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference); delegates to volpath on a scene with media"},
+      {"volpath", make<VolpathIntegrator>, "volumetric path tracer: homogeneous media, free-flight sampling, NEE through index-matched boundaries, MIS with the phase function"},
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},

@@ -7,3 +7,7 @@ target_sources(deltapath_scene PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/emitter_directional.cpp
   ${CMAKE_CURRENT_LIST_DIR}/emitter_environment.cpp
   ${CMAKE_CURRENT_LIST_DIR}/camera.cpp)
+# Participating media: phase function, free-flight sampling and transmittance.
+target_sources(deltapath_scene PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/phase_function.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/free_flight.cpp)

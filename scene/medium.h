@@ -1,6 +1,7 @@
 // Participating media. Version 1 of the scene format has homogeneous media only; they
-// are parsed and validated, and flagged in Scene::caps(), but no integrator renders
-// them yet.
+// are parsed and validated and flagged in Scene::caps(). Sampling: phase_function.h
+// (Henyey-Greenstein), free_flight.h (distances, transmittance); which medium a ray is
+// in: medium_interface.h. Rendered by `volpath` (`path` delegates to it).
 #pragma once
 
 #include <string>

@@ -310,8 +310,6 @@ void Loader::build_integrator(const XmlElement& e) {
       if (const std::string* n = c.attribute("name")) o.take(normalize_name(*n));
     (void)o.objects("integrator");
   }
-  if (t == "volpath" || t == "volpath_simple")
-    warn(e, "integrator '" + quote_input(t) + "' mapped to 'path': no deltapath integrator renders participating media yet");
   const int depth = o.get_int("max_depth", -1);
   if (depth == 0 || depth < -1) o.value_error_at(*o.take("max_depth"), "'max_depth' must be -1 or >= 1");
   d.max_depth = depth < 0 ? kUnboundedDepth : depth;
@@ -325,7 +323,7 @@ void Loader::build_integrator(const XmlElement& e) {
   o.ignore("samples_per_pass", "scheduling only");
   o.ignore("block_size", "scheduling only");
   o.finish();
-  d.type = "path";
+  d.type = t == "volpath" || t == "volpath_simple" ? "volpath" : "path";  // volpath: homogeneous media (issue 15)
   d.spp = m_spp;
   m_scene.set_integrator_defaults(d);
 }

@@ -4,8 +4,8 @@
 //                'material' (measured media) and volume-textured coefficients are
 //                errors.
 //   phase:       isotropic (default), hg with g (Mitsuba's default 0.8), -1 < g < 1.
-// Media are attached to shapes as interior/exterior (and to a sensor); no deltapath
-// integrator renders them yet (medium.h).
+// Media are attached to shapes as interior/exterior (and to a sensor); `volpath` renders
+// them (medium.h).
 #include <cmath>
 
 #include "core/error.h"

@@ -139,6 +139,7 @@ void parse_materials(LoadState& st, const YAML::Node& materials) {
   for (auto it = materials.begin(); it != materials.end(); ++it) {
     const std::string name = get_string(st.ctx, it->first, "material name");
     if (st.materials.count(name)) parse_error(st.ctx, it->first, "material '" + quote_input(name) + "' is defined twice");
+    if (name == "none") parse_error(st.ctx, it->first, "material name 'none' is reserved (an index-matched medium boundary)");
     st.materials[name].bsdf = parse_material(st.ctx, name, it->second);
   }
 }

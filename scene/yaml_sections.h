@@ -38,6 +38,7 @@ struct LoadState {
   std::map<std::string, MaterialDef> materials;
   std::map<std::string, MediumDef> media;
   const LoadOptions* options = nullptr;  // owned by the caller of load_scene_yaml*
+  int null_material = -1;  // `material: none` (index-matched boundary), added on first use
 
   // Resolve a name (a scalar node) to a scene index; ParseError for undefined names.
   int material_index(const YAML::Node& ref);

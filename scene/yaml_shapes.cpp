@@ -9,7 +9,9 @@
 //             split into (v0,v1,v2), (v0,v2,v3);  uv (0,0), (1,0), (1,1), (0,1)
 //   sphere:   center, radius > 0; a transform may only scale uniformly (rotation
 //             moves the center; the sphere's uv parameterization stays world-aligned)
-// A shape without emission needs a material. Geometric normal (v1-v0) x (v2-v0).
+// A shape without emission needs a material; `material: none` (only with interior or
+// exterior) is an index-matched medium boundary (the null BSDF, scene/medium_interface.h).
+// Geometric normal (v1-v0) x (v2-v0).
 // Explicit triangles/quads must be non-degenerate; degenerate triangles inside mesh
 // files are dropped (TriangleMesh::finalize) and reported with a warning.
 #include <algorithm>
@@ -20,6 +22,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/bsdfs.h"
 #include "scene/limits.h"
 #include "scene/mesh_io.h"
 #include "scene/yaml_sections.h"
@@ -186,7 +189,15 @@ void parse_shape(LoadState& st, const YAML::Node& m, size_t index) {
   }
   if (const YAML::Node n = m["name"]; n.IsDefined()) shape->name = get_string(ctx, n, "name");
   if (const YAML::Node mat = m["material"]; mat.IsDefined()) {
-    shape->material = st.material_index(mat);
+    if (mat.IsScalar() && mat.Scalar() == "none") {
+      // An index-matched medium boundary (SCENE_FORMAT.md): light passes unrefracted.
+      if (!m["interior"].IsDefined() && !m["exterior"].IsDefined())
+        parse_error(ctx, mat, "'material: none' is allowed only on a shape with 'interior' or 'exterior'");
+      if (st.null_material < 0) st.null_material = st.scene.add_bsdf(make_null(), "none");
+      shape->material = st.null_material;
+    } else {
+      shape->material = st.material_index(mat);
+    }
   } else if (!(emission > 0.0f).any()) {
     parse_error(ctx, m, "missing required key 'material' in " + type + " shape (only emissive shapes may omit it)");
   }

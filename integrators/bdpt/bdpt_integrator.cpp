@@ -43,7 +43,8 @@ RenderResult BdptIntegrator::render(const scene::Scene& scene, const RenderOptio
   raw.sums["camera"] = std::move(sum);
   raw.sums["light"] = std::move(splat_sum);
   raw.counts["spp"] = spp_counts(sched, w, h);
-  RenderResult result = finish_tiled(*this, std::move(raw), sched, options);
+  RenderResult result = finish_tiled([this](const core::RawImage& r, const RenderOptions& o) { return finish(r, o); },
+                                     std::move(raw), sched, options);
   for (const auto& s : thread_stats) result.stats.merge(s);
   return result;
 }

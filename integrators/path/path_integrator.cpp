@@ -1,22 +1,25 @@
 #include "integrators/path/path_integrator.h"
 
-#include <algorithm>
-
 #include "integrators/path/path_tracer.h"
-#include "integrators/raw_result.h"
-#include "integrators/tile_scheduler.h"
+#include "integrators/radiance_render.h"
+#include "integrators/volpath/volpath_integrator.h"
 
 namespace dp::integrators {
 
 RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
+  if (scene.caps().has_media) {
+    // Media are rendered by volpath (issue 15), with this integrator's settings; the
+    // counters are volpath's and the sidecar says so.
+    VolpathIntegrator volpath(VolpathSettings::from_path(m_settings));
+    RenderResult result = volpath.render(scene, options);
+    result.info["delegated_to"] = "volpath";
+    return result;
+  }
   const auto& cam = scene.camera();
-  const int w = cam.width(), h = cam.height();
-  std::vector<Rgbd> sum(size_t(w) * size_t(h), Rgbd::Zero());
-  std::vector<core::Stats> thread_stats(size_t(resolve_threads(options)));
+  const int w = cam.width();
   const PathTracer tracer(scene, m_settings, options.max_depth);
-
-  const ScheduleResult sched = run_tiles(w, h, options, "path", [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
-    core::Stats& stats = thread_stats[size_t(thread)];
+  return render_radiance(scene, options, "path", [&](const Tile& tile, int spp, core::Rng& rng, std::vector<Rgbd>& sum,
+                                                     core::Stats& stats) {
     PathCounters counters;
     const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
       L = tracer.radiance(cam.generate_ray(raster), rng, counters);
@@ -26,37 +29,10 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
     stats.add("pt.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
     stats.add("pt.nan_dropped", dropped);
   });
-
-  core::RawImage raw;
-  raw.width = w;
-  raw.height = h;
-  raw.sums["radiance"] = std::move(sum);
-  raw.counts["spp"] = spp_counts(sched, w, h);
-  // The image goes through finish() as a merge of --partial files does: same code, same bits.
-  RenderResult result = finish_tiled(*this, std::move(raw), sched, options);
-  for (const auto& s : thread_stats) result.stats.merge(s);
-  return result;
 }
 
 RenderResult PathIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
-  const std::vector<Rgbd>& sum = raw.sum("radiance");
-  const std::vector<int64_t>& count = raw.count("spp");
-  RenderResult result;
-  core::Image img(raw.width, raw.height), spp(raw.width, raw.height);
-  result.min_spp = count.empty() ? 0 : count[0];
-  result.max_spp = result.min_spp;
-  for (size_t i = 0; i < count.size(); ++i) {
-    const int64_t n = count[i];
-    if (n > 0) img[i] = (sum[i] / double(n)).cast<float>();
-    spp[i] = Rgb::Constant(float(n));
-    result.min_spp = std::min(result.min_spp, n);
-    result.max_spp = std::max(result.max_spp, n);
-  }
-  result.partial = result.min_spp < options.spp;
-  result.layers.push_back({"", std::move(img)});
-  // Which pixels lack samples (as ScheduleResult::fill): their counts.
-  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
-  return result;
+  return finish_radiance(raw, options);
 }
 
 }  // namespace dp::integrators

@@ -1,4 +1,7 @@
-// `--integrator path`: scheduling of the unidirectional path tracer over tiles.
+// `--integrator path`: scheduling of the unidirectional path tracer over tiles. On a
+// scene with participating media (Scene::caps().has_media) it delegates to `volpath`
+// with the same settings (rr_depth, nee, hide_emitters): counters are then `volpath.*`
+// and the sidecar's info says `delegated_to: volpath`.
 #pragma once
 
 #include "integrators/integrator.h"

@@ -365,3 +365,17 @@ TEST_CASE("yaml: every built-in scene in scenes/ loads", "[unit]") {
   CHECK(textured->caps().has_env);
   CHECK(textured->caps().has_textures);
 }
+
+TEST_CASE("yaml: 'material: none' is an index-matched medium boundary (issue 15)", "[unit]") {
+  const std::string media = "media:\n  fog: {type: homogeneous, sigma_a: 0.1, sigma_s: 0.2}\n";
+  auto s = load(kHead + media + "shapes:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: none, interior: fog}\n");
+  REQUIRE(s->shapes().size() == 1);
+  REQUIRE(s->shapes()[0]->material >= 0);
+  const Bsdf& b = *s->bsdfs()[size_t(s->shapes()[0]->material)];
+  CHECK(b.lobes() == kNull);
+  CHECK(s->caps().has_media);
+  // Only on a medium boundary (line 6: the shape), and 'none' cannot be redefined (line 5).
+  require_error<ParseError>(kHead + media + "shapes:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: none}\n", 7,
+                            "'material: none' is allowed only on a shape with 'interior' or 'exterior'");
+  require_error<ParseError>(kHead + "materials:\n  none: {type: diffuse, albedo: 0.5}\n", 5, "material name 'none' is reserved");
+}

@@ -122,4 +122,54 @@ std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution, 
   return finish(std::move(s), Vec3(0.0f, 0.0f, 0.6f), Vec3(0.0f, -0.45f, -1.3f), 50.0f, resolution);
 }
 
+namespace {
+scene::HomogeneousMedium make_medium(const Rgb& sigma_a, const Rgb& sigma_s, float g) {
+  scene::HomogeneousMedium m;
+  m.sigma_a = sigma_a;
+  m.sigma_s = sigma_s;
+  m.phase.type = scene::PhaseFunctionDesc::Type::hg;
+  m.phase.g = g;
+  return m;
+}
+}  // namespace
+
+std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& medium, const Rgb& env, bool camera_inside,
+                                             int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int m = s->add_medium(medium);
+  auto ball = std::make_unique<scene::Sphere>(Vec3(0, 0, 0), 1.0f);
+  ball->material = s->add_bsdf(scene::make_null(), "none");
+  ball->interior_medium = m;
+  scene::Sphere* ball_ptr = ball.get();
+  s->add_shape(std::move(ball));
+  s->add_emitter(std::make_unique<scene::EnvironmentEmitter>(env));
+  if (camera_inside) {
+    // The camera's medium is the ball's; the outside would default to it too
+    // (SCENE_FORMAT.md), so the ball names a clear exterior (no extinction: vacuum).
+    ball_ptr->exterior_medium = s->add_medium(scene::HomogeneousMedium{});
+    s->set_camera_medium(m);
+    return finish(std::move(s), Vec3(0.0f, 0.1f, 0.3f), Vec3(0.2f, 0.0f, -1.0f), 80.0f, resolution);
+  }
+  return finish(std::move(s), Vec3(0.0f, 0.0f, 2.5f), Vec3(0, 0, 0), 55.0f, resolution);
+}
+
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
+  const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
+  add_box(*s, {white, white, red, white, white, white});
+  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
+  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  auto smoke = std::make_unique<scene::Sphere>(Vec3(-0.45f, -0.6f, -0.2f), 0.4f);
+  smoke->material = s->add_bsdf(scene::make_null(), "none");
+  smoke->interior_medium = s->add_medium(make_medium(Rgb::Constant(0.2f), Rgb(1.5f, 2.5f, 3.5f), 0.5f));
+  s->add_shape(std::move(smoke));
+  auto glass = std::make_unique<scene::Sphere>(Vec3(0.45f, -0.6f, 0.2f), 0.4f);
+  glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
+  glass->interior_medium = s->add_medium(make_medium(Rgb(0.2f, 0.8f, 1.6f), Rgb::Constant(0.3f), 0.0f));
+  s->add_shape(std::move(glass));
+  if (fog) s->set_camera_medium(s->add_medium(make_medium(Rgb::Constant(0.05f), Rgb::Constant(0.15f), -0.3f)));
+  return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
+}
+
 }  // namespace dp::test

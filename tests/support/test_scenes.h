@@ -36,4 +36,20 @@ std::unique_ptr<scene::Scene> caustic_box(int resolution);
 // lights at infinity).
 std::unique_ptr<scene::Scene> env_glossy(scene::BsdfPtr sphere, int resolution, float sun = 0.0f);
 
+// The volumetric furnace (issue 15): a sphere of radius 1 at the origin behind an
+// index-matched boundary (`material: none`) whose interior is `medium`, under a constant
+// environment of radiance `env` and nothing else. With an albedo-1 medium (sigma_a = 0)
+// every path escapes unchanged in expectation: every pixel's expected value is `env`.
+// camera_inside: the camera sits inside the sphere (the scene's camera medium; the ball
+// then names a clear medium, sigma = 0, as its exterior).
+std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& medium, const Rgb& env, bool camera_inside,
+                                             int resolution);
+
+// lit_box with media: sphere a an index-matched ball of forward-scattering smoke
+// (sigma_s (1.5, 2.5, 3.5), sigma_a 0.2, HG g = 0.5), sphere b a glass ball (eta 1.5)
+// filled with an absorbing, weakly scattering tinted medium (isotropic). `fog`: the
+// camera's medium is a thin fog (sigma_s 0.15, sigma_a 0.05, g = -0.3) filling the
+// closed box, around and between the balls.
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution);
+
 }  // namespace dp::test

@@ -1,0 +1,52 @@
+#include "integrators/radiance_render.h"
+
+#include <algorithm>
+
+#include "integrators/raw_result.h"
+
+namespace dp::integrators {
+
+RenderResult render_radiance(const scene::Scene& scene, const RenderOptions& options, const std::string& label,
+                             const RadianceTileFunction& fn) {
+  const auto& cam = scene.camera();
+  const int w = cam.width(), h = cam.height();
+  std::vector<Rgbd> sum(size_t(w) * size_t(h), Rgbd::Zero());
+  std::vector<core::Stats> thread_stats(size_t(resolve_threads(options)));
+
+  const ScheduleResult sched = run_tiles(w, h, options, label, [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
+    fn(tile, spp, rng, sum, thread_stats[size_t(thread)]);
+  });
+
+  core::RawImage raw;
+  raw.width = w;
+  raw.height = h;
+  raw.sums["radiance"] = std::move(sum);
+  raw.counts["spp"] = spp_counts(sched, w, h);
+  // The image goes through finish() as a merge of --partial files does: same code, same bits.
+  RenderResult result = finish_tiled(finish_radiance, std::move(raw), sched, options);
+  for (const auto& s : thread_stats) result.stats.merge(s);
+  return result;
+}
+
+RenderResult finish_radiance(const core::RawImage& raw, const RenderOptions& options) {
+  const std::vector<Rgbd>& sum = raw.sum("radiance");
+  const std::vector<int64_t>& count = raw.count("spp");
+  RenderResult result;
+  core::Image img(raw.width, raw.height), spp(raw.width, raw.height);
+  result.min_spp = count.empty() ? 0 : count[0];
+  result.max_spp = result.min_spp;
+  for (size_t i = 0; i < count.size(); ++i) {
+    const int64_t n = count[i];
+    if (n > 0) img[i] = (sum[i] / double(n)).cast<float>();
+    spp[i] = Rgb::Constant(float(n));
+    result.min_spp = std::min(result.min_spp, n);
+    result.max_spp = std::max(result.max_spp, n);
+  }
+  result.partial = result.min_spp < options.spp;
+  result.layers.push_back({"", std::move(img)});
+  // Which pixels lack samples (as ScheduleResult::fill): their counts.
+  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
+  return result;
+}
+
+}  // namespace dp::integrators

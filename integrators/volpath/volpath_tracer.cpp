@@ -1,0 +1,253 @@
+#include "integrators/volpath/volpath_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/path/path_tracer.h"  // power_heuristic
+#include "scene/free_flight.h"
+#include "scene/medium_interface.h"
+#include "scene/phase_function.h"
+
+namespace dp::integrators {
+
+using scene::BsdfContext;
+using scene::SurfaceHit;
+
+void VolpathCounters::flush(core::Stats& stats) const {
+  stats.add("volpath.rays", rays);
+  stats.add("volpath.shadow_rays", shadow_rays);
+  stats.add("volpath.rr_terminated", rr_terminated);
+  stats.add("volpath.medium_scatter", medium_scatter);
+  stats.add("volpath.medium_pass", medium_pass);
+  stats.add("volpath.surface_events", surface_events);
+  stats.add("volpath.null_crossings", null_crossings);
+  stats.add("volpath.shadow_null_crossings", shadow_null_crossings);
+  stats.add("volpath.fail.null_limit", null_limit);
+  stats.add("volpath.media_skipped", media_skipped);
+}
+
+namespace {
+
+// A direction is usable at a surface only if the geometric and shading normals agree on
+// its side (as in path_tracer.cpp).
+bool consistent_side(const SurfaceHit& hit, const Vec3& w_world, float cos_shading) {
+  return hit.ng.dot(w_world) * cos_shading > 0.0f;
+}
+
+// Russian roulette after rr_depth segments, survival min(0.95, max throughput component).
+bool survive(Rgb& beta, int depth, int rr_depth, core::Rng& rng, VolpathCounters& c) {
+  if (depth < rr_depth) return true;
+  const float q = std::min(0.95f, max_component(beta));
+  if (!(rng.uniform() < q)) {
+    ++c.rr_terminated;
+    return false;
+  }
+  beta /= q;
+  return true;
+}
+
+}  // namespace
+
+VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& settings, int max_depth)
+    : m_scene(scene),
+      m_settings(settings),
+      m_max_depth(max_depth),
+      m_has_media(scene.caps().has_media),
+      m_camera_medium(scene.camera_medium()) {}
+
+Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, VolpathCounters& c) const {
+  Rgb tr = Rgb::Ones();
+  SurfaceHit h;
+  for (int crossings = 0;; ++crossings) {
+    const bool found = m_scene.intersect(r, h);
+    // Beer-Lambert over the part of the segment inside this medium (Gruson et al. 2018,
+    // Eq. 2: tau of the NEE edge).
+    if (medium >= 0 && m_settings.fault != VolpathFault::nee_without_transmittance)
+      tr *= scene::transmittance(m_scene.media()[size_t(medium)], found ? h.t : r.tmax);
+    if (!found) return tr;
+    if (!scene::is_index_matched(h)) return Rgb::Zero();  // an opaque or refractive surface blocks it
+    if (crossings >= kMaxNullCrossings) {
+      ++c.null_limit;
+      return Rgb::Zero();
+    }
+    ++c.shadow_null_crossings;
+    if (is_black(tr)) return tr;
+    medium = scene::medium_toward(h, r.d, medium, m_camera_medium);
+    r = target ? m_scene.spawn_segment(h, *target) : m_scene.spawn_ray(h, r.d);
+  }
+}
+
+template <bool kMedia>
+Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_local, const BsdfContext& ctx, int medium,
+                                      core::Rng& rng, VolpathCounters& c) const {
+  const float u_light = rng.uniform();
+  const Vec2 u = rng.uniform2();
+  float pmf;
+  const scene::Emitter* emitter = m_scene.sample_emitter(u_light, pmf);
+  if (!emitter) return Rgb::Zero();
+  const scene::DirectSample ds = emitter->sample_direct(hit.p, u);
+  if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
+  const Vec3 wo_local = hit.shading.to_local(ds.wi);
+  if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
+  float bsdf_pdf;  // pdf of sampling wo by the BSDF, for the MIS weight
+  const Rgb f = hit.bsdf->eval_pdf(ctx, wi_local, wo_local, bsdf_pdf) * abs_cos_theta(wo_local);
+  if (is_black(f)) return Rgb::Zero();
+  ++c.shadow_rays;
+  const bool finite = std::isfinite(ds.dist);
+  const Ray r = finite ? m_scene.spawn_segment(hit, ds.p) : m_scene.spawn_ray(hit, ds.wi);
+  Rgb tr = Rgb::Ones();
+  if constexpr (kMedia) {
+    const int light_side = scene::medium_toward(hit, ds.wi, medium, m_camera_medium);
+    tr = shadow_transmittance(r, light_side, finite ? &ds.p : nullptr, c);
+    if (is_black(tr)) return Rgb::Zero();
+  } else {
+    (void)medium;
+    if (m_scene.occluded(r)) return Rgb::Zero();
+  }
+  const float light_pdf = pmf * ds.pdf;
+  const float weight = ds.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
+  return f * tr * ds.radiance * (weight / light_pdf);
+}
+
+Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng,
+                                     VolpathCounters& c) const {
+  const float u_light = rng.uniform();
+  const Vec2 u = rng.uniform2();
+  float pmf;
+  const scene::Emitter* emitter = m_scene.sample_emitter(u_light, pmf);
+  if (!emitter) return Rgb::Zero();
+  const scene::DirectSample ds = emitter->sample_direct(p, u);
+  if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
+  // The medium vertex's rho = sigma_s * rho_p (Gruson et al. 2018, Eq. 3); sigma_s is
+  // already in the throughput (free-flight weight), G has no cosines here (Eq. 4).
+  const float phase = scene::HenyeyGreenstein(m_scene.media()[size_t(medium)].phase).eval(d, ds.wi);
+  if (!(phase > 0.0f)) return Rgb::Zero();
+  ++c.shadow_rays;
+  Ray r;
+  r.o = p;
+  r.d = ds.wi;
+  r.tmin = 0.0f;
+  const bool finite = std::isfinite(ds.dist);
+  r.tmax = finite ? std::max(0.0f, ds.dist - 2.0f * m_scene.ray_epsilon() * (1.0f + ds.p.cwiseAbs().maxCoeff()))
+                  : kInfinity;
+  const Rgb tr = shadow_transmittance(r, medium, finite ? &ds.p : nullptr, c);
+  if (is_black(tr)) return Rgb::Zero();
+  const float light_pdf = pmf * ds.pdf;
+  const bool no_mis = ds.delta || m_settings.fault == VolpathFault::medium_nee_without_mis;
+  const float weight = no_mis ? 1.0f : power_heuristic(light_pdf, phase);  // phase pdf == phase value
+  return tr * ds.radiance * (phase * weight / light_pdf);
+}
+
+template <bool kMedia>
+Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c) const {
+  Rgb L = Rgb::Zero(), beta = Rgb::Ones();
+  Ray ray = primary;
+  bool prev_delta = true;  // the camera is a "delta" for MIS: directly seen lights count fully
+  float prev_pdf = 0.0f;   // solid-angle pdf of the last BSDF or phase sample
+  Vec3 prev_p = primary.o; // the last scattering vertex (index-matched boundaries are not vertices)
+  int medium = kMedia ? m_camera_medium : -1;
+  [[maybe_unused]] int nulls = 0;  // index-matched boundaries crossed (media only)
+  const scene::EnvironmentEmitter* env = m_scene.environment();
+  SurfaceHit hit;
+  if constexpr (!kMedia) ++c.media_skipped;
+  for (int depth = 1; depth <= m_max_depth;) {
+    const bool found = m_scene.intersect(ray, hit);
+    ++c.rays;
+    if constexpr (kMedia) {
+      if (medium >= 0) {
+        const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
+        const float u_channel = rng.uniform(), u_distance = rng.uniform();
+        const scene::FreeFlightSample ff =
+            scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+        Rgb w = ff.weight;
+        if (m_settings.fault == VolpathFault::pass_without_probability && !ff.scattered)
+          w = scene::transmittance(med, ff.t);
+        beta *= w;
+        if (ff.scattered) {
+          ++c.medium_scatter;
+          if (depth == m_max_depth || is_black(beta)) break;
+          const Vec3 p = ray.at(ff.t);
+          if (m_settings.nee) L += beta * next_event_medium(p, ray.d, medium, rng, c);
+          const scene::HenyeyGreenstein phase(med.phase);
+          const Vec3 wo = phase.sample(ray.d, rng.uniform2());
+          // Phase sampling is exact: the weight rho_p / pdf is 1, beta is unchanged.
+          prev_pdf = phase.pdf(ray.d, wo);
+          prev_delta = false;
+          prev_p = p;
+          if (!survive(beta, depth, m_settings.rr_depth, rng, c)) break;
+          ray.o = p;
+          ray.d = wo;
+          ray.tmin = 0.0f;
+          ray.tmax = kInfinity;
+          ++depth;
+          continue;
+        }
+        ++c.medium_pass;
+        if (is_black(beta)) break;
+      }
+    }
+    const bool hide = depth == 1 && m_settings.hide_emitters;
+    if (!found) {
+      if (env && !hide) {
+        const Rgb Le = env->eval_direction(ray.d);
+        float w = 1.0f;
+        if (!prev_delta && m_settings.nee)
+          w = power_heuristic(prev_pdf, m_scene.emitter_pmf(env) * env->pdf_direct(prev_p, {}, {}, ray.d));
+        L += beta * Le * w;
+      }
+      break;
+    }
+    if (hit.emitter && !hide) {
+      const Rgb Le = hit.emitter->eval(hit, -ray.d);
+      if (!is_black(Le)) {
+        float w = 1.0f;
+        if (!prev_delta && m_settings.nee) {
+          const float light_pdf = m_scene.emitter_pmf(hit.emitter) * hit.emitter->pdf_direct(prev_p, hit.p, hit.ng, ray.d);
+          w = power_heuristic(prev_pdf, light_pdf);
+        }
+        L += beta * Le * w;
+      }
+    }
+    if constexpr (kMedia) {
+      if (scene::is_index_matched(hit)) {  // not a vertex: switch media, keep the direction and depth
+        ++c.null_crossings;
+        if (++nulls > kMaxNullCrossings) {
+          ++c.null_limit;
+          break;
+        }
+        medium = scene::medium_toward(hit, ray.d, medium, m_camera_medium);
+        ray = m_scene.spawn_ray(hit, ray.d);
+        continue;
+      }
+    }
+    if (depth == m_max_depth || !hit.bsdf) break;
+    const Vec3 wi_local = hit.shading.to_local(-ray.d);
+    if (!consistent_side(hit, -ray.d, wi_local.z())) break;
+    ++c.surface_events;
+    const BsdfContext ctx{hit.uv, scene::TransportMode::radiance};
+    if (m_settings.nee && !hit.bsdf->is_purely_delta())
+      L += beta * next_event_surface<kMedia>(hit, wi_local, ctx, medium, rng, c);
+
+    const float u_lobe = rng.uniform();
+    const Vec2 u = rng.uniform2();
+    const auto bs = hit.bsdf->sample(ctx, wi_local, u_lobe, u);
+    if (!bs || is_black(bs->weight)) break;
+    const Vec3 wo = hit.shading.to_world(bs->wo);
+    if (!consistent_side(hit, wo, bs->wo.z())) break;
+    beta *= bs->weight;
+    prev_delta = bs->is_delta();
+    prev_pdf = bs->pdf;
+    prev_p = hit.p;
+    if constexpr (kMedia) medium = scene::medium_toward(hit, wo, medium, m_camera_medium);
+    if (!survive(beta, depth, m_settings.rr_depth, rng, c)) break;
+    ray = m_scene.spawn_ray(hit, wo);
+    ++depth;
+  }
+  return L;
+}
+
+Rgb VolpathTracer::radiance(const Ray& ray, core::Rng& rng, VolpathCounters& counters) const {
+  return m_has_media ? trace<true>(ray, rng, counters) : trace<false>(ray, rng, counters);
+}
+
+}  // namespace dp::integrators
