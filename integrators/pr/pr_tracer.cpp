@@ -13,26 +13,27 @@ using gradients::ShiftResult;
 using gradients::ShiftStatus;
 using pathspace::Path;
 
-void PrCounters::flush(core::Stats& stats) const {
-  stats.add("pr.tiles", tiles);
-  stats.add("pr.base_paths", base_paths);
-  stats.add("pr.base_paths_without_paths", bases_without_paths);
-  stats.add("pr.nan_dropped", nan_dropped);
-  stats.add("pr.estimates.own", own);
-  stats.add("pr.estimates.reused", reused);
-  stats.add("pr.shift.attempted", shifts);
-  stats.add("pr.shift.complete", shifts_full);
+void PrCounters::flush(core::Stats& stats, const std::string& prefix) const {
+  const std::string& p = prefix;
+  stats.add(p + ".tiles", tiles);
+  stats.add(p + ".base_paths", base_paths);
+  stats.add(p + ".base_paths_without_paths", bases_without_paths);
+  stats.add(p + ".nan_dropped", nan_dropped);
+  stats.add(p + ".estimates.own", own);
+  stats.add(p + ".estimates.reused", reused);
+  stats.add(p + ".shift.attempted", shifts);
+  stats.add(p + ".shift.complete", shifts_full);
   for (int i = 1; i < gradients::kShiftStatusCount; ++i) {
     const std::string cause = gradients::to_string(ShiftStatus(i));
-    stats.add("pr.shift.fail." + cause, fail[size_t(i)]);
-    stats.add("pr.shift.nee_fail." + cause, nee_fail[size_t(i)]);
+    stats.add(p + ".shift.fail." + cause, fail[size_t(i)]);
+    stats.add(p + ".shift.nee_fail." + cause, nee_fail[size_t(i)]);
   }
-  stats.add("pr.shift.nee_base_zero_density", nee_base_zero);
-  stats.add("pr.shift.fail.not_invertible.class_mismatch", class_mismatch);
+  stats.add(p + ".shift.nee_base_zero_density", nee_base_zero);
+  stats.add(p + ".shift.fail.not_invertible.class_mismatch", class_mismatch);
   for (int i = 1; i < gradients::kStepKindCount; ++i) {
     const std::string kind = gradients::to_string(gradients::StepKind(i));
-    stats.add("pr.step." + kind + ".attempted", attempted[size_t(i)]);
-    stats.add("pr.step." + kind + ".succeeded", succeeded[size_t(i)]);
+    stats.add(p + ".step." + kind + ".attempted", attempted[size_t(i)]);
+    stats.add(p + ".step." + kind + ".succeeded", succeeded[size_t(i)]);
   }
 }
 

@@ -25,6 +25,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -47,7 +48,8 @@ struct PrCounters {
   int64_t class_mismatch = 0;  // of fail[not_invertible]: an offset vertex of another class
   int64_t own = 0, reused = 0;  // (base, pixel) estimates with a nonzero value: own pixel, other pixels
   int64_t nan_dropped = 0;
-  void flush(core::Stats& stats) const;
+  // Into counters "<prefix>.*" (`gpr` reuses the tracer under its own name).
+  void flush(core::Stats& stats, const std::string& prefix = "pr") const;
 };
 
 // One base walk reused over its tile: the per-pixel estimates and the tile's MIS weight
