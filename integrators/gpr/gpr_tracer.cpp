@@ -102,7 +102,7 @@ void GprTracer::render_tile(const ReuseTile& inner, core::Rng& rng, gradients::G
         continue;
       }
     }
-    m_pr.reuse(*base, q, ext, fan, c.reuse);
+    m_pr.reuse(*base, q, ext, fan, c.reuse, &bases);  // primary rays traced once per tile
     bool finite = true;
     for (const Rgbd& v : fan.value) finite = finite && v.isFinite().all();
     if (!finite) {
