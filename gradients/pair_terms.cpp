@@ -50,7 +50,9 @@ void PairTerms::prepare_offset(const ShiftResult* res) {
     const Vertex& o = res->path[k];
     const double J = res->jacobian[size_t(k)];
     m_beta_o[size_t(k + 1)] = m_beta_o[size_t(k)] * o.f_cos.cast<double>() * J / (base[k].pdf * double(base[k].rr));
-    m_ratio[size_t(k + 1)] = m_ratio[size_t(k)] * o.pdf * J / base[k].pdf;
+    // A walk stops where its sampled BSDF weight is black (pathspace/path_builder.cpp), so
+    // pixel j's walk cannot continue through an offset vertex of black f: density 0.
+    m_ratio[size_t(k + 1)] = is_black(o.f_cos) ? 0.0 : m_ratio[size_t(k)] * o.pdf * J / base[k].pdf;
     m_jprefix[size_t(k + 1)] = m_jprefix[size_t(k)] * J;
   }
 }
@@ -71,7 +73,9 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
     t.base_visible = bl.visible;
     if (bl.visible) {
       t.fb = m_beta[size_t(k)] * (bl.f_cos * bl.radiance).cast<double>() / bl.pdf;
-      t.b_other = bl.bsdf_pdf / bl.pdf;
+      // BSDF sampling cannot produce the path where f toward the light is black (the walk
+      // stops there), whatever the direction's pdf.
+      t.b_other = is_black(bl.f_cos) ? 0.0 : bl.bsdf_pdf / bl.pdf;
     }
     t.has_offset = res && res->nee_ok(k);
     if (t.has_offset) {
@@ -79,7 +83,7 @@ const std::vector<PairTerm>& PairTerms::terms(const ShiftResult* res, int min_se
       const double J = res->nee_jacobian[size_t(k)];
       t.offset_visible = ol.visible;
       t.c = m_ratio[size_t(k)] * J * ol.pdf / bl.pdf;
-      t.d = ol.visible ? m_ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
+      t.d = ol.visible && !is_black(ol.f_cos) ? m_ratio[size_t(k)] * J * ol.bsdf_pdf / bl.pdf : 0.0;
       t.jacobian = m_jprefix[size_t(k)] * J;
       if (ol.visible) t.fo = m_beta_o[size_t(k)] * (ol.f_cos * ol.radiance).cast<double>() * (J / bl.pdf);
     }

@@ -23,19 +23,27 @@ bool light_visible(const scene::Scene& scene, const scene::SurfaceHit& hit, cons
 }  // namespace
 
 void ReconnectionShift::shift(const Path& base, const Vec2& raster_offset, ShiftResult& out) const {
+  run(base, base.raster + raster_offset, nullptr, out);
+}
+
+void ReconnectionShift::shift_to_primary(const Path& base, const Path& target, ShiftResult& out) const {
+  run(base, target.raster, &target, out);
+}
+
+void ReconnectionShift::run(const Path& base, const Vec2& raster, const Path* target, ShiftResult& out) const {
   const int n = base.size();
   out.reset(n);
   Path& o = out.path;
-  o.raster = base.raster + raster_offset;
+  o.raster = raster;
   Vertex cam = base[0];
-  cam.wo_world = m_scene.camera().generate_ray(o.raster).d;
+  cam.wo_world = target ? (*target)[0].wo_world : m_scene.camera().generate_ray(o.raster).d;
   o.append(cam);
   out.alive = 1;
   for (int k = 0; k < n; ++k) {
     if (k >= 1 && base.nee[size_t(k)].valid) shift_nee(base, k, out);
     if (k + 1 >= n) break;
     if (o.size() < k + 2) {  // a chain step (ManifoldShift) may already have made x'_{k+1}
-      const ShiftStatus s = step(base, k, out);
+      const ShiftStatus s = k == 0 && target ? adopt_primary(base, *target, out) : step(base, k, out);
       if (s != ShiftStatus::ok) {
         out.status = s;
         return;
@@ -154,6 +162,35 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
   set_scatter(ov, b, wo_l, wo_w, f, pdf);
   out.jacobian[size_t(k)] = reported_jacobian(J, m_opt.fault, out.step[size_t(k)] == StepKind::half_vector);
   return trace_next(base, k, out);
+}
+
+ShiftStatus ReconnectionShift::adopt_primary(const Path& base, const Path& target, ShiftResult& out) const {
+  out.step[0] = StepKind::primary;  // same sub-pixel offset: Jacobian 1
+  const Vertex& bn = base[1];
+  if (target.size() < 2) return ShiftStatus::miss;  // (a built walk always has x_1)
+  const Vertex& t = target[1];
+  // The vertex trace_next would make from the same camera ray (the walk's x_1 was traced
+  // from it): position, classification, wi and emission; no scattering record yet.
+  Vertex nv;
+  nv.kind = t.kind;
+  if (t.kind == VertexKind::environment) {
+    if (bn.kind != VertexKind::environment) return ShiftStatus::miss;
+    nv.wo_world = t.wo_world;
+    nv.hit.p = t.hit.p;
+    nv.connectable = true;
+  } else {
+    if (bn.kind == VertexKind::environment) return ShiftStatus::miss;
+    nv.hit = t.hit;
+    nv.connectable = t.connectable;
+    nv.wi = t.hit.shading.to_local(-target[0].wo_world);
+  }
+  if (m_opt.match_classes && nv.connectable != bn.connectable) {
+    out.class_mismatch = true;
+    return ShiftStatus::not_invertible;
+  }
+  nv.emission = t.emission;
+  out.path.append(nv);
+  return ShiftStatus::ok;
 }
 
 ShiftStatus ReconnectionShift::trace_next(const Path& base, int k, ShiftResult& out) const {

@@ -47,6 +47,12 @@ class ReconnectionShift : public Shift {
   ReconnectionShift(const scene::Scene& scene, const ReconnectionShiftOptions& options)
       : m_scene(scene), m_opt(options) {}
   void shift(const pathspace::Path& base, const Vec2& raster_offset, ShiftResult& out) const override;
+  // Path reusing (Bauszat et al. 2017, Sec. 3.3: a tile's primary rays are traced once):
+  // the shift into the pixel of `target`, a walk built at the same sub-pixel position
+  // there (correlated primary rays), taking its camera ray and primary vertex instead of
+  // re-tracing them. The same offset as shift(base, target.raster - base.raster) (up to the
+  // float rounding of that raster difference).
+  void shift_to_primary(const pathspace::Path& base, const pathspace::Path& target, ShiftResult& out) const;
   std::string name() const override { return "reconnection"; }
   const ReconnectionShiftOptions& options() const { return m_opt; }
 
@@ -58,6 +64,10 @@ class ReconnectionShift : public Shift {
   virtual ShiftStatus step(const pathspace::Path& base, int k, ShiftResult& out) const;
   void shift_nee(const pathspace::Path& base, int k, ShiftResult& out) const;
   ShiftStatus trace_next(const pathspace::Path& base, int k, ShiftResult& out) const;
+  // shift() and shift_to_primary(): `target` null = trace the primary ray at `raster`.
+  void run(const pathspace::Path& base, const Vec2& raster, const pathspace::Path* target, ShiftResult& out) const;
+  // Step 0 from target's primary vertex: the checks of trace_next(base, 0, out).
+  ShiftStatus adopt_primary(const pathspace::Path& base, const pathspace::Path& target, ShiftResult& out) const;
   const scene::Scene& m_scene;
   ReconnectionShiftOptions m_opt;
 };

@@ -8,6 +8,7 @@
 #include "integrators/gbdpt/gbdpt_integrator.h"
 #include "integrators/gpm/gpm_integrator.h"
 #include "integrators/gvcm/gvcm_integrator.h"
+#include "integrators/gpr/gpr_integrator.h"
 #include "integrators/gpt/gpt_integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
@@ -37,6 +38,7 @@ const std::vector<Entry>& registry() {
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},
       {"pr", make<PrIntegrator>, "generalized path reusing over jittered tiles (Bauszat et al. 2017, Sec. 3.1, Eq. 7)"},
+      {"gpr", make<GprIntegrator>, "gradient-domain path reusing over jittered tiles with a one-pixel border (Bauszat et al. 2017, Sec. 3.2, Eq. 8), L1/L2 reconstruction"},
       {"gbdpt", make<GbdptIntegrator>, "gradient-domain bidirectional path tracing (Manzi et al. 2015), L1/L2 reconstruction"},
       {"gpm", make<GpmIntegrator>, "gradient-domain photon mapping (G-PM as Sun et al. 2017 implement it), L1/L2 reconstruction"},
       {"gvcm", make<GvcmIntegrator>, "gradient-domain vertex connection and merging (Sun et al. 2017), L1/L2 reconstruction"},

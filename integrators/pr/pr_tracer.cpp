@@ -13,26 +13,27 @@ using gradients::ShiftResult;
 using gradients::ShiftStatus;
 using pathspace::Path;
 
-void PrCounters::flush(core::Stats& stats) const {
-  stats.add("pr.tiles", tiles);
-  stats.add("pr.base_paths", base_paths);
-  stats.add("pr.base_paths_without_paths", bases_without_paths);
-  stats.add("pr.nan_dropped", nan_dropped);
-  stats.add("pr.estimates.own", own);
-  stats.add("pr.estimates.reused", reused);
-  stats.add("pr.shift.attempted", shifts);
-  stats.add("pr.shift.complete", shifts_full);
+void PrCounters::flush(core::Stats& stats, const std::string& prefix) const {
+  const std::string& p = prefix;
+  stats.add(p + ".tiles", tiles);
+  stats.add(p + ".base_paths", base_paths);
+  stats.add(p + ".base_paths_without_paths", bases_without_paths);
+  stats.add(p + ".nan_dropped", nan_dropped);
+  stats.add(p + ".estimates.own", own);
+  stats.add(p + ".estimates.reused", reused);
+  stats.add(p + ".shift.attempted", shifts);
+  stats.add(p + ".shift.complete", shifts_full);
   for (int i = 1; i < gradients::kShiftStatusCount; ++i) {
     const std::string cause = gradients::to_string(ShiftStatus(i));
-    stats.add("pr.shift.fail." + cause, fail[size_t(i)]);
-    stats.add("pr.shift.nee_fail." + cause, nee_fail[size_t(i)]);
+    stats.add(p + ".shift.fail." + cause, fail[size_t(i)]);
+    stats.add(p + ".shift.nee_fail." + cause, nee_fail[size_t(i)]);
   }
-  stats.add("pr.shift.nee_base_zero_density", nee_base_zero);
-  stats.add("pr.shift.fail.not_invertible.class_mismatch", class_mismatch);
+  stats.add(p + ".shift.nee_base_zero_density", nee_base_zero);
+  stats.add(p + ".shift.fail.not_invertible.class_mismatch", class_mismatch);
   for (int i = 1; i < gradients::kStepKindCount; ++i) {
     const std::string kind = gradients::to_string(gradients::StepKind(i));
-    stats.add("pr.step." + kind + ".attempted", attempted[size_t(i)]);
-    stats.add("pr.step." + kind + ".succeeded", succeeded[size_t(i)]);
+    stats.add(p + ".step." + kind + ".attempted", attempted[size_t(i)]);
+    stats.add(p + ".step." + kind + ".succeeded", succeeded[size_t(i)]);
   }
 }
 
@@ -51,7 +52,8 @@ PrTracer::PrTracer(const scene::Scene& scene, const PrSettings& settings, int ma
     : m_scene(scene),
       m_settings(settings),
       m_builder(scene, pathspace::WalkOptions{max_depth, settings.rr_depth, settings.nee, settings.shift_threshold}),
-      m_shift(make_reuse_shift(scene, settings)) {}
+      m_shift(make_reuse_shift(scene, settings)),
+      m_reconnect(dynamic_cast<const gradients::ReconnectionShift*>(m_shift.get())) {}
 
 void PrTracer::count(const Path& base, const ShiftResult& r, PrCounters& c) const {
   const int n = base.size();
@@ -83,7 +85,8 @@ void PrTracer::build_bases(const ReuseTile& tile, core::Rng& rng, std::vector<Pa
   }
 }
 
-void PrTracer::reuse(const Path& base, int q, const ReuseTile& tile, ReuseFan& fan, PrCounters& c) const {
+void PrTracer::reuse(const Path& base, int q, const ReuseTile& tile, ReuseFan& fan, PrCounters& c,
+                     const std::vector<Path>* tile_bases) const {
   const int npix = tile.pixels(), tw = tile.width();
   const size_t keys = ReuseFan::key(base.size() + 1, true);
   fan.value.assign(size_t(npix), Rgbd::Zero());
@@ -115,7 +118,8 @@ void PrTracer::reuse(const Path& base, int q, const ReuseTile& tile, ReuseFan& f
   const int qx = q % tw, qy = q / tw;
   for (int m = 0; m < npix; ++m) {
     if (m == q) continue;
-    m_shift->shift(base, Vec2(float(m % tw - qx), float(m / tw - qy)), fan.res);
+    if (tile_bases && m_reconnect) m_reconnect->shift_to_primary(base, (*tile_bases)[size_t(m)], fan.res);
+    else m_shift->shift(base, Vec2(float(m % tw - qx), float(m / tw - qy)), fan.res);
     count(base, fan.res, c);
     for (const PairTerm& t : fan.pairs.terms(&fan.res, 2, true)) {
       // A failed reuse, or a light sample occluded from m's vertex: no technique of m
@@ -160,7 +164,7 @@ void PrTracer::render_tile(const ReuseTile& tile, core::Rng& rng, int width, std
       if (is_finite(direct)) sum[index(q)] += direct.cast<double>();
       else ++c.nan_dropped;
     }
-    reuse(base, q, tile, fan, c);
+    reuse(base, q, tile, fan, c, &bases);
     for (int m = 0; m < npix; ++m) {
       const Rgbd& v = fan.value[size_t(m)];
       if (!v.isFinite().all()) {

@@ -25,11 +25,13 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
 #include "core/stats.h"
 #include "gradients/pair_terms.h"
+#include "gradients/reconnection_shift.h"
 #include "gradients/shift.h"
 #include "integrators/pr/pr_settings.h"
 #include "integrators/pr/reuse_tiling.h"
@@ -47,7 +49,8 @@ struct PrCounters {
   int64_t class_mismatch = 0;  // of fail[not_invertible]: an offset vertex of another class
   int64_t own = 0, reused = 0;  // (base, pixel) estimates with a nonzero value: own pixel, other pixels
   int64_t nan_dropped = 0;
-  void flush(core::Stats& stats) const;
+  // Into counters "<prefix>.*" (`gpr` reuses the tracer under its own name).
+  void flush(core::Stats& stats, const std::string& prefix = "pr") const;
 };
 
 // One base walk reused over its tile: the per-pixel estimates and the tile's MIS weight
@@ -85,7 +88,11 @@ class PrTracer {
   // The tile's base walks (row-major), one shared sub-pixel position.
   void build_bases(const ReuseTile& tile, core::Rng& rng, std::vector<pathspace::Path>& bases) const;
   // Reuses `base` (sampled in tile pixel q, row-major index) in every pixel of the tile.
-  void reuse(const pathspace::Path& base, int q, const ReuseTile& tile, ReuseFan& fan, PrCounters& counters) const;
+  // `tile_bases` (the tile's base walks, build_bases): each offset takes its pixel's
+  // primary ray and hit from there instead of re-tracing them (Bauszat 2017, Sec. 3.3);
+  // null: traced (the same offsets up to float rounding of the raster position).
+  void reuse(const pathspace::Path& base, int q, const ReuseTile& tile, ReuseFan& fan, PrCounters& counters,
+             const std::vector<pathspace::Path>* tile_bases = nullptr) const;
   const gradients::Shift& shift() const { return *m_shift; }
   const pathspace::PathBuilder& builder() const { return m_builder; }
 
@@ -95,6 +102,7 @@ class PrTracer {
   PrSettings m_settings;
   pathspace::PathBuilder m_builder;
   std::unique_ptr<gradients::Shift> m_shift;
+  const gradients::ReconnectionShift* m_reconnect = nullptr;  // m_shift as a reconnection shift, if it is one
 };
 
 }  // namespace dp::integrators

@@ -6,12 +6,13 @@
 
 namespace dp::integrators {
 
-ReuseTiling jittered_tiling(int width, int height, int tile, uint64_t seed, int64_t iteration) {
+ReuseTiling jittered_tiling(int width, int height, int tile, uint64_t seed, int64_t iteration, bool jitter) {
   ReuseTiling t;
   // Its own stream (salted), apart from the tiles' sampling streams.
   core::Rng rng(seed, core::mix64(uint64_t(iteration) ^ 0x7469'6c65'6a69'7474ull));
   t.ox = int(rng.uniform_index(uint32_t(tile)));
   t.oy = int(rng.uniform_index(uint32_t(tile)));
+  if (!jitter) t.ox = t.oy = 0;
   // Column c covers [c T - ox, (c + 1) T - ox) clipped to the image; same for rows.
   for (int y0 = -t.oy; y0 < height; y0 += tile)
     for (int x0 = -t.ox; x0 < width; x0 += tile) {

@@ -22,7 +22,8 @@ struct ReuseTiling {
   std::vector<ReuseTile> tiles;
 };
 
-// The tiles of iteration `iteration` of a width x height image.
-ReuseTiling jittered_tiling(int width, int height, int tile, uint64_t seed, int64_t iteration);
+// The tiles of iteration `iteration` of a width x height image (`jitter` false: the grid
+// at offset (0, 0) in every iteration, for tests that look at fixed tile borders).
+ReuseTiling jittered_tiling(int width, int height, int tile, uint64_t seed, int64_t iteration, bool jitter = true);
 
 }  // namespace dp::integrators

@@ -63,12 +63,17 @@ struct Counts {
   }
 };
 
-Counts roundtrip(const scene::Scene& s, float threshold, int samples) {
+// Offsets `offsets` (cycled over the samples; G-PT: (1, 0)); `match_classes`: the reuse
+// shift of path reusing (reconnection_shift.h).
+Counts roundtrip(const scene::Scene& s, float threshold, int samples, const std::vector<Vec2>& offsets = {Vec2(1, 0)},
+                 bool match_classes = false) {
   pathspace::WalkOptions wo;
   wo.max_depth = 8;
   wo.shift_threshold = threshold;
   const pathspace::PathBuilder builder(s, wo);
-  const gradients::ReconnectionShift shift(s, {threshold, true});
+  gradients::ReconnectionShiftOptions so{threshold, true};
+  so.match_classes = match_classes;
+  const gradients::ReconnectionShift shift(s, so);
   core::Rng rng(3, 9);
   pathspace::IndependentStream stream(rng);
   pathspace::Path x, y;
@@ -77,14 +82,15 @@ Counts roundtrip(const scene::Scene& s, float threshold, int samples) {
   const int res = s.camera().width();
   for (int i = 0; i < samples; ++i) {
     builder.build(i % (res - 1), (i / (res - 1)) % res, stream, x);
-    shift.shift(x, Vec2(1, 0), fwd);
+    const Vec2 off = offsets[size_t(i) % offsets.size()];
+    shift.shift(x, off, fwd);
     if (fwd.alive < 2) continue;
     y = fwd.path;
     y.vertices.resize(size_t(fwd.alive));
     y.nee.resize(size_t(fwd.alive));
     for (int k = 0; k < fwd.alive; ++k)
       if (!fwd.nee_ok(k) || !(y.nee[size_t(k)].pdf > 0.0)) y.nee[size_t(k)].valid = false;  // not an NEE sample of pixel j
-    shift.shift(y, Vec2(-1, 0), rev);
+    shift.shift(y, -off, rev);
     ++c.checked;
     if (rev.alive != y.size()) continue;
     ++c.reverse_ok;
@@ -159,6 +165,32 @@ TEST_CASE("shift bijectivity T^-1(T(x)) = x on diffuse, glossy, mirror, glass an
     REQUIRE(c.reconnect > 100);
     if (std::string(cs.name) == "glossy" || std::string(cs.name) == "mixed") REQUIRE(c.half_vector > 10);
     if (std::string(cs.name) == "mirror" || std::string(cs.name) == "glass") REQUIRE(c.dirac > 10);
+  }
+}
+
+
+// Path reusing (Bauszat et al. 2017, Sec. 3.1): R is the shift with matching classes by
+// offsets of up to the tile size T = 6 (and beyond), so R_k(x_k, R_j(x_j, x_k)) = x_k must
+// hold at those offsets too (the tile-constant MIS weights of Eq. 3 rest on it), with the
+// same per-sample bound on |J J^-1 - 1| (test::jj_tolerance).
+TEST_CASE("reuse shift bijectivity R^-1(R(x)) = x for offsets of up to T pixels", "[unit]") {
+  const std::vector<Vec2> offsets = {Vec2(6, 0), Vec2(0, -6), Vec2(6, 6), Vec2(-4, 5), Vec2(2, -3), Vec2(-6, -6)};
+  struct Case {
+    const char* name;
+    scene::BsdfPtr a, b;
+  };
+  const Case cases[] = {{"diffuse", nullptr, nullptr}, {"glossy", glossy(), glossy()}, {"mixed", glossy(), glass()}};
+  for (const auto& cs : cases) {
+    const auto s = test::lit_box(cs.a, cs.b, 24);
+    const Counts c = roundtrip(*s, 0.1f, 3000, offsets, true);
+    report(cs.name, c);
+    INFO(cs.name);
+    REQUIRE(c.checked > 1000);
+    REQUIRE(c.reverse_ok == c.checked);
+    REQUIRE(c.worst_pos < 2e-3);
+    REQUIRE(c.jac_over == 0);
+    REQUIRE(c.reconnect > 100);
+    if (std::string(cs.name) != "diffuse") REQUIRE(c.half_vector > 10);
   }
 }
 
@@ -336,4 +368,50 @@ TEST_CASE("IdentityShift returns the base path with Jacobian 1", "[unit]") {
   REQUIRE(r.alive == x.size());
   REQUIRE(r.total_jacobian() == 1.0);
   for (int k = 0; k < x.size(); ++k) REQUIRE(r.path[k].p() == x[k].p());
+}
+
+// Path reusing takes each offset's primary ray and hit from its pixel's own walk at the
+// same sub-pixel position (ReconnectionShift::shift_to_primary, Bauszat 2017, Sec. 3.3)
+// instead of re-tracing them: the offset must be the one shift() makes (vertices, status,
+// Jacobians; up to the float rounding of the raster difference). Seen failing: the
+// adopted x_1 without its incoming direction wi (half-vector copies and NEE then differ).
+TEST_CASE("shift_to_primary equals shift by the raster offset", "[unit]") {
+  const auto s = test::lit_box(glossy(), glass(), 24);
+  pathspace::WalkOptions wo;
+  wo.max_depth = 6;
+  wo.shift_threshold = 0.1f;
+  const pathspace::PathBuilder builder(*s, wo);
+  gradients::ReconnectionShiftOptions so{0.1f, true};
+  so.match_classes = true;
+  const gradients::ReconnectionShift shift(*s, so);
+  core::Rng rng(5, 1);
+  pathspace::IndependentStream stream(rng);
+  pathspace::Path x, t;
+  gradients::ShiftResult a, b;
+  int compared = 0, alive_differs = 0;
+  double worst_pos = 0, worst_jac = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 u = stream.next2();
+    const int bx = 6 + i % 12, by = 6 + (i / 12) % 12, ox = i % 13 - 6, oy = (i / 13) % 13 - 6;
+    builder.build_from_raster(Vec2(float(bx) + u.x(), float(by) + u.y()), stream, x);
+    builder.build_from_raster(Vec2(float(bx + ox) + u.x(), float(by + oy) + u.y()), stream, t);
+    shift.shift(x, Vec2(float(ox), float(oy)), a);
+    shift.shift_to_primary(x, t, b);
+    ++compared;
+    if (a.alive != b.alive || a.status != b.status) {
+      ++alive_differs;
+      continue;
+    }
+    for (int k = 0; k < a.alive; ++k) {
+      worst_pos = std::max(worst_pos, double((a.path[k].p() - b.path[k].p()).norm()));
+      worst_jac = std::max(worst_jac, std::abs(a.jacobian[size_t(k)] / b.jacobian[size_t(k)] - 1.0));
+      if (a.nee_ok(k) && b.nee_ok(k))
+        worst_jac = std::max(worst_jac, std::abs(a.nee_jacobian[size_t(k)] / b.nee_jacobian[size_t(k)] - 1.0));
+    }
+  }
+  std::printf("shift_to_primary vs shift: %d compared, %d differ in alive/status, worst |dx| %.2e, worst J ratio - 1 %.2e\n",
+              compared, alive_differs, worst_pos, worst_jac);
+  CHECK(alive_differs * 200 <= compared);  // float rounding of the raster may flip a rare grazing case
+  CHECK(worst_pos < 1e-3);
+  CHECK(worst_jac < 1e-3);
 }
