@@ -32,20 +32,11 @@ RenderResult finish_radiance(const core::RawImage& raw, const RenderOptions& opt
   const std::vector<Rgbd>& sum = raw.sum("radiance");
   const std::vector<int64_t>& count = raw.count("spp");
   RenderResult result;
-  core::Image img(raw.width, raw.height), spp(raw.width, raw.height);
-  result.min_spp = count.empty() ? 0 : count[0];
-  result.max_spp = result.min_spp;
-  for (size_t i = 0; i < count.size(); ++i) {
-    const int64_t n = count[i];
-    if (n > 0) img[i] = (sum[i] / double(n)).cast<float>();
-    spp[i] = Rgb::Constant(float(n));
-    result.min_spp = std::min(result.min_spp, n);
-    result.max_spp = std::max(result.max_spp, n);
-  }
-  result.partial = result.min_spp < options.spp;
+  core::Image img(raw.width, raw.height);
+  for (size_t i = 0; i < count.size(); ++i)
+    if (count[i] > 0) img[i] = (sum[i] / double(count[i])).cast<float>();
   result.layers.push_back({"", std::move(img)});
-  // Which pixels lack samples (as ScheduleResult::fill): their counts.
-  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
+  fill_counts(count, raw.width, raw.height, options, result);
   return result;
 }
 

@@ -1,5 +1,7 @@
 #include "integrators/raw_result.h"
 
+#include <algorithm>
+
 namespace dp::integrators {
 
 std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int height) {
@@ -7,6 +9,20 @@ std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int heig
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) count[size_t(y) * size_t(width) + size_t(x)] = sched.spp_at(x, y);
   return count;
+}
+
+void fill_counts(const std::vector<int64_t>& count, int width, int height, const RenderOptions& options,
+                 RenderResult& result) {
+  core::Image spp(width, height);
+  result.min_spp = count.empty() ? 0 : count[0];
+  result.max_spp = result.min_spp;
+  for (size_t i = 0; i < count.size(); ++i) {
+    spp[i] = Rgb::Constant(float(count[i]));
+    result.min_spp = std::min(result.min_spp, count[i]);
+    result.max_spp = std::max(result.max_spp, count[i]);
+  }
+  result.partial = result.min_spp < options.spp;
+  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
 }
 
 RenderResult finish_tiled(const FinishFunction& finish, core::RawImage raw, const ScheduleResult& sched,

@@ -16,6 +16,11 @@ namespace dp::integrators {
 // The schedule's per-pixel sample counts (the raw count "spp").
 std::vector<int64_t> spp_counts(const ScheduleResult& sched, int width, int height);
 
+// The end of a finish(): min_spp/max_spp of `count`, partial = min_spp < options.spp, and
+// (as ScheduleResult::fill) an "spp" layer of the counts where pixels lack samples.
+void fill_counts(const std::vector<int64_t>& count, int width, int height, const RenderOptions& options,
+                 RenderResult& result);
+
 // finish() with spp 0 for a time budget (no count to fall short of); wall time, spp range,
 // partial and passes from the schedule; the "spp" layer of an interrupted render.
 using FinishFunction = std::function<RenderResult(const core::RawImage& raw, const RenderOptions& options)>;

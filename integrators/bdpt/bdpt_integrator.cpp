@@ -59,21 +59,14 @@ RenderResult BdptIntegrator::finish(const core::RawImage& raw, const RenderOptio
   for (const int64_t n : count) light_paths += double(n);
   const double splat_scale = light_paths > 0 ? double(raw.pixels()) / light_paths : 0.0;
   RenderResult result;
-  core::Image img(raw.width, raw.height), spp(raw.width, raw.height);
-  result.min_spp = count.empty() ? 0 : count[0];
-  result.max_spp = result.min_spp;
+  core::Image img(raw.width, raw.height);
   for (size_t i = 0; i < count.size(); ++i) {
-    const int64_t n = count[i];
     Rgbd v = splat_sum[i] * splat_scale;
-    if (n > 0) v += sum[i] / double(n);
+    if (count[i] > 0) v += sum[i] / double(count[i]);
     img[i] = v.cast<float>();
-    spp[i] = Rgb::Constant(float(n));
-    result.min_spp = std::min(result.min_spp, n);
-    result.max_spp = std::max(result.max_spp, n);
   }
-  result.partial = result.min_spp < options.spp;
   result.layers.push_back({"", std::move(img)});
-  if (result.partial || result.min_spp != result.max_spp) result.layers.push_back({"spp", std::move(spp)});
+  fill_counts(count, raw.width, raw.height, options, result);
   result.info["light_paths"] = light_paths;
   return result;
 }

@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
+#include "integrators/radiance_render.h"
 #include "integrators/tile_scheduler.h"
 #include "integrators/vcm/vcm_camera.h"
 
@@ -156,20 +157,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
 }
 
 RenderResult VcmIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
-  const std::vector<Rgbd>& sum = raw.sum("radiance");
-  const std::vector<int64_t>& count = raw.count("spp");
-  RenderResult result;
-  core::Image img(raw.width, raw.height);
-  result.min_spp = count.empty() ? 0 : count[0];
-  result.max_spp = result.min_spp;
-  for (size_t i = 0; i < count.size(); ++i) {
-    if (count[i] > 0) img[i] = (sum[i] / double(count[i])).cast<float>();
-    result.min_spp = std::min(result.min_spp, count[i]);
-    result.max_spp = std::max(result.max_spp, count[i]);
-  }
-  result.partial = result.min_spp < options.spp;
-  result.layers.push_back({"", std::move(img)});
-  return result;
+  return finish_radiance(raw, options);  // the iterations' sum over their count, as path's
 }
 
 }  // namespace dp::integrators

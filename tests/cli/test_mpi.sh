@@ -28,7 +28,7 @@ same_exr() {
 }
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path gpt bdpt gbdpt gpm gvcm vcm; do
+for integrator in path volpath gpt bdpt gbdpt gpm gvcm vcm; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=(render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")

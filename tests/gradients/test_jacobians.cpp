@@ -22,6 +22,7 @@ using namespace dp::gradients;
 
 namespace {
 using Chart = test::DirectionChart;
+using test::fd_det;
 
 struct Surface {  // plane (n, point) or sphere (center, radius)
   bool sphere = false;
@@ -51,32 +52,6 @@ Vec3d rand_upper(core::Rng& rng, double min_z = 0.15) {
   }
 }
 
-// Determinant of central differences of map: R^(2m) charts -> R^(2m) charts.
-double fd_det(const std::vector<Chart>& in, const std::vector<Chart>& out,
-              const std::function<bool(const std::vector<Vec3d>&, std::vector<Vec3d>&)>& map) {
-  const int m = int(in.size());
-  const double h = 1e-6;
-  Eigen::MatrixXd J(2 * m, 2 * m);
-  for (int c = 0; c < 2 * m; ++c) {
-    Eigen::VectorXd col(2 * m);
-    for (int sgn = -1; sgn <= 1; sgn += 2) {
-      std::vector<Vec3d> x(static_cast<size_t>(m)), y;
-      for (int i = 0; i < m; ++i) {
-        double a = 0, b = 0;
-        if (c == 2 * i) a = sgn * h;
-        if (c == 2 * i + 1) b = sgn * h;
-        x[size_t(i)] = in[size_t(i)].at(a, b);
-      }
-      if (!map(x, y)) return std::nan("");
-      Eigen::VectorXd v(2 * m);
-      for (int i = 0; i < m; ++i) v.segment<2>(2 * i) = out[size_t(i)].coords(y[size_t(i)]);
-      if (sgn < 0) col = -v;
-      else col += v;
-    }
-    J.col(c) = col / (2 * h);
-  }
-  return std::abs(J.determinant());
-}
 
 struct Report {
   std::vector<double> err;

@@ -31,6 +31,7 @@ using namespace dp::gradients;
 
 namespace {
 using Chart = test::DirectionChart;
+using test::fd_det;
 constexpr int kW = 64, kMaxOffset = 8;
 
 const Vec3d kEye(0.3, 0.2, 0.0);
@@ -51,27 +52,6 @@ Vec3d hit_sphere(const Vec3d& o, const Vec3d& d, const Vec3d& c, double r) {
 }
 bool ok(const Vec3d& v) { return v.allFinite(); }
 
-// Determinant of central differences of map: 2m chart coordinates -> 2m chart coordinates.
-double fd_det(const std::vector<Chart>& in, const std::vector<Chart>& out,
-              const std::function<bool(const std::vector<Vec3d>&, std::vector<Vec3d>&)>& map) {
-  const int m = int(in.size());
-  const double h = 1e-6;
-  Eigen::MatrixXd J(2 * m, 2 * m);
-  for (int c = 0; c < 2 * m; ++c) {
-    Eigen::VectorXd col(2 * m);
-    for (int sgn = -1; sgn <= 1; sgn += 2) {
-      std::vector<Vec3d> x(static_cast<size_t>(m)), y;
-      for (int i = 0; i < m; ++i)
-        x[size_t(i)] = in[size_t(i)].at(c == 2 * i ? sgn * h : 0.0, c == 2 * i + 1 ? sgn * h : 0.0);
-      if (!map(x, y)) return std::nan("");
-      Eigen::VectorXd v(2 * m);
-      for (int i = 0; i < m; ++i) v.segment<2>(2 * i) = out[size_t(i)].coords(y[size_t(i)]);
-      col = sgn < 0 ? Eigen::VectorXd(-v) : Eigen::VectorXd(col + v);
-    }
-    J.col(c) = col / (2 * h);
-  }
-  return std::abs(J.determinant());
-}
 
 struct Report {
   std::vector<double> err;

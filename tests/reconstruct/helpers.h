@@ -9,9 +9,23 @@
 #include "core/image.h"
 #include "core/rng.h"
 #include "reconstruct/laplacian.h"
+#include "reconstruct/pcg.h"
+#include "reconstruct/vec4.h"
 #include "reconstruct/problem.h"
 
 namespace dp::reconstruct::test {
+
+// Random 3-channel vectors (4th lane 0), and A applied chunk by chunk.
+inline std::vector<Vec4> random_vec4(size_t n, core::Rng& rng) {
+  std::vector<Vec4> v(n);
+  for (auto& x : v) x = Vec4{rng.uniform() - 0.5f, rng.uniform(), 2.0f * rng.uniform() - 1.0f, 0.0f};
+  return v;
+}
+inline std::vector<Vec4> apply_all(const ChunkedOperator& A, const std::vector<Vec4>& in) {
+  std::vector<Vec4> out(in.size());
+  for (size_t c = 0; c < A.chunks(); ++c) A.apply(c, in.data(), out.data());
+  return out;
+}
 
 // Smooth ramps plus a hard edge and a bright square: gradients of every size.
 inline core::Image test_image(int w, int h) {

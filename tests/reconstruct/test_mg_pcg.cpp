@@ -14,18 +14,6 @@ using namespace dp::reconstruct::test;
 
 namespace {
 
-std::vector<Vec4> random_vec4(size_t n, core::Rng& rng) {
-  std::vector<Vec4> v(n);
-  for (auto& x : v) x = Vec4{rng.uniform() - 0.5f, rng.uniform(), 2.0f * rng.uniform() - 1.0f, 0.0f};
-  return v;
-}
-
-std::vector<Vec4> apply_all(const GridOperator& A, const std::vector<Vec4>& in) {
-  std::vector<Vec4> out(in.size());
-  for (size_t c = 0; c < A.chunks(); ++c) A.apply(c, in.data(), out.data());
-  return out;
-}
-
 Vec4d dot(const std::vector<Vec4>& a, const std::vector<Vec4>& b) {
   Vec4d s;
   for (size_t i = 0; i < a.size(); ++i) accumulate(s, a[i] * b[i]);

@@ -13,18 +13,6 @@ using namespace dp::reconstruct::test;
 
 namespace {
 
-std::vector<Vec4> random_vec4(size_t n, core::Rng& rng) {
-  std::vector<Vec4> v(n);
-  for (auto& x : v) x = Vec4{rng.uniform() - 0.5f, rng.uniform(), 2.0f * rng.uniform() - 1.0f, 0.0f};
-  return v;
-}
-
-std::vector<Vec4> apply_all(const ChunkedOperator& A, const std::vector<Vec4>& in) {
-  std::vector<Vec4> out(in.size());
-  for (size_t c = 0; c < A.chunks(); ++c) A.apply(c, in.data(), out.data());
-  return out;
-}
-
 std::vector<Vec4> precondition_all(const ChunkedOperator& A, const std::vector<Vec4>& r) {
   std::vector<Vec4> z(r.size());
   for (size_t c = 0; c < A.chunks(); ++c) A.precondition(c, r.data(), z.data());
