@@ -3,7 +3,7 @@
 
 #include "apps/commands.h"
 #include "manifold/mesh_normals.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 namespace dp::apps {
 

@@ -24,7 +24,7 @@
 #include "integrators/integrator.h"
 #include "integrators/tile_scheduler.h"
 #include "manifold/mesh_normals.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 namespace dp::apps {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "core/timer.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "scene/scene.h"
 
 using namespace dp;

@@ -33,7 +33,7 @@
 #include "pathspace/path_builder.h"
 #include "integrators/integrator.h"
 #include "manifold/mesh_normals.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 using namespace dp;
 

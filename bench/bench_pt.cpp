@@ -18,7 +18,7 @@
 #include "integrators/tile_scheduler.h"
 #include "manifold/mesh_normals.h"
 #include "scene/embree_accel.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 using namespace dp;
 

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "scene/yaml_values.h"
+#include "scene/loaders/yaml/yaml_values.h"
 
 namespace dp::experiments {
 

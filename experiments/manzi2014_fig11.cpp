@@ -22,7 +22,7 @@
 #include "core/image_io.h"
 #include "kernels_adaptive/features.h"
 #include "kernels_adaptive/pair_kernel.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 using namespace dp;
 

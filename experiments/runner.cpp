@@ -22,7 +22,7 @@
 #include "experiments/results_csv.h"
 #include "experiments/scoring.h"
 #include "manifold/mesh_normals.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 
 namespace dp::experiments {
 

@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 
 namespace dp::experiments {
 

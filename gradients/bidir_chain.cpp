@@ -7,8 +7,8 @@
 #include "manifold/constraints.h"
 #include "manifold/local_geometry.h"
 #include "pathspace/scatter.h"
-#include "scene/emitter.h"
-#include "scene/shape.h"
+#include "scene/emitters/emitter.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::gradients {
 

@@ -30,7 +30,7 @@ bool mesh_frame(const scene::TriangleMesh& m, int prim, const Vec3d& p, LocalFra
   const double b1 = (g22 * r1 - g12 * r2) / gdet, b2 = (g11 * r2 - g12 * r1) / gdet;
   f.p = q;
 
-  // dp/du as in scene/triangle_mesh.cpp (pbrt-v3 Sec. 3.6.2), or e1 without uvs.
+  // dp/du as in scene/shapes/triangle_mesh.cpp (pbrt-v3 Sec. 3.6.2), or e1 without uvs.
   Vec3d dpdu = e1;
   if (!m.uvs.empty()) {
     const Vec2d uv0 = m.uvs[tri[0]].cast<double>(), uv1 = m.uvs[tri[1]].cast<double>(),
@@ -81,7 +81,7 @@ bool sphere_frame(const scene::Sphere& sph, const Vec3d& p, LocalFrame& f) {
   const double sigma = sph.flip_normals ? -1.0 : 1.0;
   f.ng = sigma * local / r;
   f.n = f.ng;
-  // dp/du = 2 pi (-y, x, 0): T1 = a / |a| (scene/sphere.cpp parameterization).
+  // dp/du = 2 pi (-y, x, 0): T1 = a / |a| (scene/shapes/sphere.cpp parameterization).
   const Vec3d a(-local.y(), local.x(), 0.0);
   const double la = a.norm();
   if (!(la > 1e-9 * r)) return false;  // pole

@@ -3,7 +3,7 @@
 //
 // Meshes: the point is projected onto the plane of its triangle; barycentrics, dp/du,
 // dp/dv, the interpolated shading normal and its derivatives follow the conventions of
-// scene/triangle_mesh.cpp (uv = barycentrics (b1, b2) when the mesh has no uvs).
+// scene/shapes/triangle_mesh.cpp (uv = barycentrics (b1, b2) when the mesh has no uvs).
 // dn/du of a mesh comes from interpolated vertex normals; a mesh without normals is flat
 // shaded (dn = 0) unless estimate_vertex_normals() (mesh_normals.h) filled them.
 // Spheres: the point is projected onto the sphere; T1 along dp/du = 2 pi (-y, x, 0) (the

@@ -14,9 +14,9 @@
 
 #include <cstddef>
 
-#include "scene/bsdf.h"
-#include "scene/loader.h"
-#include "scene/shape.h"
+#include "scene/bsdf/bsdf.h"
+#include "scene/loaders/loader.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::manifold {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/warp.h"
-#include "scene/shape.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::pathspace {
 

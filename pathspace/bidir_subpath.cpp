@@ -5,7 +5,7 @@
 #include "core/warp.h"
 #include "pathspace/bidir_light.h"
 #include "pathspace/scatter.h"
-#include "scene/shape.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::pathspace {
 

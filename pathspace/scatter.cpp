@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "pathspace/classify.h"
-#include "scene/shape.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::pathspace {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "scene/shape.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::scene {
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "scene/bsdf.h"
+#include "scene/bsdf/bsdf.h"
 #include "scene/camera.h"
-#include "scene/emitter.h"
-#include "scene/medium.h"
-#include "scene/shape.h"
+#include "scene/emitters/emitter.h"
+#include "scene/media/medium.h"
+#include "scene/shapes/shape.h"
 #include "scene/surface.h"
 
 namespace dp::scene {

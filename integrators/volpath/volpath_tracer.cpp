@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
-#include "scene/free_flight.h"
-#include "scene/medium_interface.h"
-#include "scene/phase_function.h"
+#include "scene/media/free_flight.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
 
 namespace dp::integrators {
 

@@ -4,7 +4,7 @@
 // function), edge transmittances tau and geometry terms, whose cosines are 1 at medium
 // vertices).
 //  * Each segment that starts in a medium samples a free-flight distance
-//    (scene/free_flight.h, one-sample MIS over RGB channels): a scatter before the next
+//    (scene/media/free_flight.h, one-sample MIS over RGB channels): a scatter before the next
 //    surface makes a medium vertex, otherwise the weight Tr / P(pass) carries the
 //    segment's transmittance to the surface.
 //  * Next-event estimation at surface and medium vertices: the shadow ray passes
@@ -14,7 +14,7 @@
 //    light density of a hit reached through index-matched boundaries is taken from the
 //    last scattering vertex, where NEE sampled it.
 //  * Index-matched boundaries are not vertices: crossing one changes the medium
-//    (scene/medium_interface.h) and costs no depth; refractive boundaries (dielectrics)
+//    (scene/media/medium_interface.h) and costs no depth; refractive boundaries (dielectrics)
 //    are ordinary surface vertices whose sampled direction picks the medium.
 //  * Russian roulette after rr_depth segments as `path`. max_depth counts scattering
 //    segments (surface and medium vertices), a directly visible light is depth 1.

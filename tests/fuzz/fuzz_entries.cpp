@@ -7,9 +7,9 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "experiments/config.h"
-#include "scene/loader.h"
-#include "scene/mesh_io.h"
-#include "scene/mitsuba_loader.h"
+#include "scene/loaders/loader.h"
+#include "scene/loaders/mesh_io.h"
+#include "scene/loaders/mitsuba/mitsuba_loader.h"
 
 namespace dp::fuzz {
 

@@ -14,7 +14,7 @@
 #include "gradients/reconnection_shift.h"
 #include "pathspace/path_builder.h"
 #include "pathspace/scatter.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/jj_bound.h"
 #include "tests/support/test_scenes.h"
 

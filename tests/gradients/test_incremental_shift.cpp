@@ -19,7 +19,7 @@
 #include "gradients/incremental_shift.h"
 #include "gradients/shift_factory.h"
 #include "pathspace/path_builder.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 #include "tests/manifold/manifold_fixtures.h"
 #include "tests/support/direction_chart.h"
 

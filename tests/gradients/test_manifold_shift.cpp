@@ -18,8 +18,8 @@
 #include "gradients/manifold_shift.h"
 #include "manifold/constraints.h"
 #include "pathspace/path_builder.h"
-#include "scene/bsdfs.h"
-#include "scene/loader.h"
+#include "scene/bsdf/bsdfs.h"
+#include "scene/loaders/loader.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/direction_chart.h"
 

@@ -4,7 +4,7 @@
 
 #include "core/rng.h"
 #include "pathspace/bidir_subpath.h"
-#include "scene/shape.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::test {
 

@@ -11,8 +11,8 @@
 #include <cstdio>
 
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "scene/bsdfs.h"
-#include "scene/shape.h"
+#include "scene/bsdf/bsdfs.h"
+#include "scene/shapes/shape.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/welch.h"
 

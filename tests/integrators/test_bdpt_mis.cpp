@@ -22,8 +22,8 @@
 #include "core/rng.h"
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
-#include "scene/bsdfs.h"
-#include "scene/shape.h"
+#include "scene/bsdf/bsdfs.h"
+#include "scene/shapes/shape.h"
 #include "tests/integrators/bidir_reference.h"
 #include "tests/support/test_scenes.h"
 

@@ -12,7 +12,7 @@
 #include <cstdio>
 
 #include "integrators/bdpt/bdpt_integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/block_stats.h"

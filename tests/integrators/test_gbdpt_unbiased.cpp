@@ -10,7 +10,7 @@
 #include <cstdio>
 
 #include "integrators/gbdpt/gbdpt_tracer.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/test_scenes.h"
 

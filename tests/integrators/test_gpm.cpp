@@ -17,7 +17,7 @@
 
 #include "integrators/gpm/gpm_integrator.h"
 #include "integrators/gpm/gpm_tracer.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/furnace_bound.h"
 #include "tests/support/test_scenes.h"

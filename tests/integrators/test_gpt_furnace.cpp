@@ -13,7 +13,7 @@
 #include "integrators/gpt/gpt_tracer.h"
 #include "integrators/integrator.h"
 #include "pathspace/measure.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/furnace_bound.h"
 #include "tests/support/test_scenes.h"

@@ -14,7 +14,7 @@
 #include <cstdio>
 
 #include "pathspace/classify.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/test_scenes.h"
 

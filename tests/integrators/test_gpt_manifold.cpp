@@ -19,8 +19,8 @@
 #include <regex>
 #include <sstream>
 
-#include "scene/bsdfs.h"
-#include "scene/loader.h"
+#include "scene/bsdf/bsdfs.h"
+#include "scene/loaders/loader.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/test_scenes.h"
 

@@ -9,7 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/support/test_scenes.h"
 

@@ -16,7 +16,7 @@
 
 #include "integrators/gvcm/gvcm_offset.h"
 #include "pathspace/bidir_connect.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/bidir_reference.h"
 #include "tests/support/test_scenes.h"
 

@@ -15,7 +15,7 @@
 #include "gradients/merge_shift.h"
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/chain_fd.h"
 #include "tests/support/test_scenes.h"
 

@@ -52,7 +52,7 @@
 #include <memory>
 
 #include "integrators/integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/nan_bsdf.h"
 #include "tests/support/test_scenes.h"
 

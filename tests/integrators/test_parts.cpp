@@ -14,7 +14,7 @@
 #include "integrators/integrator.h"
 #include "integrators/gradient_passes.h"
 #include "integrators/tile_scheduler.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

@@ -10,7 +10,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/path/path_tracer.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

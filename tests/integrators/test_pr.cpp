@@ -30,7 +30,7 @@
 #include "integrators/pr/pr_tracer.h"
 #include "pathspace/classify.h"
 #include "pathspace/scatter.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"

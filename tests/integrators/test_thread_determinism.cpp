@@ -9,7 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "integrators/integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

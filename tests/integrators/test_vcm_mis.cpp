@@ -21,7 +21,7 @@
 #include "pathspace/bidir_connect.h"
 #include "pathspace/bidir_subpath.h"
 #include "pathspace/vcm_mis.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/bidir_reference.h"
 #include "tests/support/test_scenes.h"
 

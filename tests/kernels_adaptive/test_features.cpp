@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "kernels_adaptive/features.h"
 #include "kernels_adaptive/pair_kernel.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

@@ -8,7 +8,7 @@
 #include "manifold/constraints.h"
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "scene/scene.h"
 
 namespace dp::test_mf {

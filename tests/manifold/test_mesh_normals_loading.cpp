@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "manifold/mesh_normals.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 #include "tests/manifold/manifold_fixtures.h"
 #include "tests/scene/test_loader_util.h"
 

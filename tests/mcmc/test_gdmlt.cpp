@@ -19,7 +19,7 @@
 #include "kernels_adaptive/pair_kernel.h"
 #include "mcmc/gradient_target.h"
 #include "pathspace/sample_stream.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
 

@@ -15,7 +15,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/mlt/mlt_integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
 

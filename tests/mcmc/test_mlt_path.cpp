@@ -22,7 +22,7 @@
 #include <cstdio>
 
 #include "integrators/mlt/mlt_integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/block_stats.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"

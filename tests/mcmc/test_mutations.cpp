@@ -19,7 +19,7 @@
 #include "mcmc/mut_multichain.h"
 #include "mcmc/path_chain.h"
 #include "mcmc/path_seed.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

@@ -24,7 +24,7 @@
 #include <cstdio>
 
 #include "mcmc/path_state.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/integrators/bidir_reference.h"
 #include "tests/support/test_scenes.h"
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "pathspace/classify.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 
 using namespace dp;
 using namespace dp::scene;

@@ -12,7 +12,7 @@
 #include "pathspace/measure.h"
 #include "pathspace/path_builder.h"
 #include "pathspace/scatter.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

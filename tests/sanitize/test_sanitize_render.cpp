@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
 
 using namespace dp;

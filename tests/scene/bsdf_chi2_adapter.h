@@ -23,7 +23,7 @@
 
 #include <vector>
 
-#include "scene/bsdf.h"
+#include "scene/bsdf/bsdf.h"
 #include "tests/support/chi2.h"
 
 namespace dp::test {

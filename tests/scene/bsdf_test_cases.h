@@ -1,5 +1,5 @@
 // Shared fixtures for the BSDF tests: the catalogue of BSDF configurations (every
-// factory in scene/bsdfs.h, several roughnesses, both distributions, anisotropic) and
+// factory in scene/bsdf/bsdfs.h, several roughnesses, both distributions, anisotropic) and
 // incident directions (including grazing ones and, for dielectrics, both sides).
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 
 namespace dp::test {
 

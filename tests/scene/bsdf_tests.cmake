@@ -6,5 +6,5 @@ dp_add_test(test_bsdf
           ${CMAKE_CURRENT_LIST_DIR}/test_fresnel_microfacet.cpp
           ${CMAKE_CURRENT_LIST_DIR}/test_texture.cpp
           ${CMAKE_CURRENT_LIST_DIR}/bsdf_test_cases.cpp
-  DEPS deltapath_scene dp_test_support
+  DEPS deltapath_scene_loaders dp_test_support
   LABELS unit stat)

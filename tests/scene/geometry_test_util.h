@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "core/rng.h"
-#include "scene/emitter.h"
-#include "scene/shape.h"
+#include "scene/emitters/emitter.h"
+#include "scene/shapes/shape.h"
 
 namespace dp::test {
 

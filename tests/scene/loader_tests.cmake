@@ -3,5 +3,5 @@
 dp_add_test(test_loader
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_yaml_loader.cpp ${CMAKE_CURRENT_LIST_DIR}/test_mesh_io.cpp
           ${CMAKE_CURRENT_LIST_DIR}/test_extreme_inputs.cpp
-  DEPS deltapath_scene
+  DEPS deltapath_scene_loaders
   LABELS unit)

@@ -1,7 +1,7 @@
-# Participating media (scene/phase_function.h, scene/free_flight.h,
-# scene/medium_interface.h): HG and free-flight chi-square, weight unbiasedness (stat),
+# Participating media (scene/media/phase_function.h, scene/media/free_flight.h,
+# scene/media/medium_interface.h): HG and free-flight chi-square, weight unbiasedness (stat),
 # normalisation and boundary bookkeeping (unit).
 dp_add_test(test_media
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_media.cpp
-  DEPS deltapath_scene dp_test_support
+  DEPS deltapath_scene_loaders dp_test_support
   LABELS unit stat)

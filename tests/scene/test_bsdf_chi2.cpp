@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "core/warp.h"
-#include "scene/microfacet.h"
+#include "scene/bsdf/microfacet.h"
 #include "tests/scene/bsdf_chi2_adapter.h"
 #include "tests/scene/bsdf_test_cases.h"
 

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 #include <iostream>
 
-#include "scene/fresnel.h"
+#include "scene/bsdf/fresnel.h"
 #include "tests/scene/bsdf_test_cases.h"
 
 using namespace dp;

@@ -10,9 +10,9 @@
 #include <string>
 
 #include "core/error.h"
-#include "scene/loader.h"
-#include "scene/mitsuba_loader.h"
-#include "scene/texture.h"
+#include "scene/loaders/loader.h"
+#include "scene/loaders/mitsuba/mitsuba_loader.h"
+#include "scene/bsdf/texture.h"
 #include "test_loader_util.h"
 
 using namespace dp;

@@ -1,9 +1,9 @@
 // Unit tests of the Fresnel and microfacet building blocks.
 #include <catch2/catch.hpp>
 
-#include "scene/fresnel.h"
-#include "scene/microfacet.h"
-#include "scene/rough_transmittance.h"
+#include "scene/bsdf/fresnel.h"
+#include "scene/bsdf/microfacet.h"
+#include "scene/bsdf/rough_transmittance.h"
 #include "tests/scene/bsdf_chi2_adapter.h"
 #include "tests/scene/bsdf_test_cases.h"
 

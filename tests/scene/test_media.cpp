@@ -14,10 +14,10 @@
 #include <iostream>
 
 #include "core/rng.h"
-#include "scene/bsdfs.h"
-#include "scene/free_flight.h"
-#include "scene/medium_interface.h"
-#include "scene/phase_function.h"
+#include "scene/bsdf/bsdfs.h"
+#include "scene/media/free_flight.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
 #include "tests/support/chi2.h"
 
 using namespace dp;

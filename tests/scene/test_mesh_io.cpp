@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "scene/mesh_io.h"
+#include "scene/loaders/mesh_io.h"
 #include "test_loader_util.h"
 
 using namespace dp;

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "core/error.h"
-#include "scene/loader.h"
-#include "scene/mitsuba_loader.h"
-#include "scene/mitsuba_serialized.h"
-#include "scene/spectrum.h"
+#include "scene/loaders/loader.h"
+#include "scene/loaders/mitsuba/mitsuba_loader.h"
+#include "scene/loaders/mitsuba/mitsuba_serialized.h"
+#include "scene/loaders/mitsuba/spectrum.h"
 #include "test_loader_util.h"
 
 using namespace dp;

@@ -23,8 +23,8 @@
 
 #include "core/image_io.h"
 #include "integrators/integrator.h"
-#include "scene/loader.h"
-#include "scene/mitsuba_loader.h"
+#include "scene/loaders/loader.h"
+#include "scene/loaders/mitsuba/mitsuba_loader.h"
 
 using namespace dp;
 using namespace dp::scene;

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/image_io.h"
-#include "scene/texture.h"
+#include "scene/bsdf/texture.h"
 
 using namespace dp;
 using namespace dp::scene;

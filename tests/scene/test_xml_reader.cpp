@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "scene/mitsuba_loader.h"
-#include "scene/xml_reader.h"
+#include "scene/loaders/mitsuba/mitsuba_loader.h"
+#include "scene/loaders/mitsuba/xml_reader.h"
 #include "test_loader_util.h"
 
 using namespace dp;

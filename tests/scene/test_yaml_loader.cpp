@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "scene/loader.h"
+#include "scene/loaders/loader.h"
 #include "test_loader_util.h"
 
 using namespace dp;

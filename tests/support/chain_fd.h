@@ -11,8 +11,8 @@
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
 #include "pathspace/bidir_vertex.h"
-#include "scene/emitter.h"
-#include "scene/shape.h"
+#include "scene/emitters/emitter.h"
+#include "scene/shapes/shape.h"
 #include "tests/support/jj_bound.h"
 
 namespace dp::test {

@@ -13,7 +13,7 @@
 #include <atomic>
 #include <cstdint>
 
-#include "scene/bsdf.h"
+#include "scene/bsdf/bsdf.h"
 
 namespace dp::test {
 

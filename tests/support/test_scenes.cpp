@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "scene/bsdfs.h"
+#include "scene/bsdf/bsdfs.h"
 
 namespace dp::test {
 
