@@ -155,7 +155,7 @@ ShiftStatus walk_bidir_chain(const scene::Scene& scene, std::span<const BidirVer
   for (int j = 1; j <= m; ++j) {
     const Vec3d target = j < m ? w.chain.v[size_t(m - j)].p() : d3(x[size_t(m)]->sp.p);
     const Vec3 dir = (target.cast<float>() - from.p).normalized();
-    const auto hit = pathspace::trace_from(scene, from, dir);
+    const auto hit = scene.trace_from(from, dir);
     const int32_t shape = j < m ? x[size_t(j)]->shape : c->shape;  // a light endpoint's from pinned()
     if (!hit || hit->shape != shape || !((d3(hit->p) - target).norm() <= tol)) return ShiftStatus::occluded;
     if (j == m) break;

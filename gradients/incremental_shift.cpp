@@ -177,7 +177,7 @@ ShiftStatus IncrementalManifoldShift::walk_vertices(const Path& base, int k, Shi
     const Vec3 dir = (target.cast<float>() - o[j - 1].p()).normalized();
     const ShiftStatus ss = scatter_to(j - 1, dir);
     if (ss != ShiftStatus::ok) return ss;
-    const auto hit = pathspace::trace_from(m_scene, o[j - 1].hit, dir);
+    const auto hit = m_scene.trace_from(o[j - 1].hit, dir);
     if (!hit || hit->shape != base[j].hit.shape || !((d3(hit->p) - target).norm() <= tol)) return ShiftStatus::occluded;
     Vertex nv;
     nv.kind = VertexKind::surface;

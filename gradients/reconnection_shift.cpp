@@ -100,7 +100,7 @@ ShiftStatus ReconnectionShift::step(const Path& base, int k, ShiftResult& out) c
     double J = 1.0;
     if (bn.kind == VertexKind::environment) {
       wo_w = b.wo_world;  // same escape direction: factor 1
-      if (pathspace::trace_from(m_scene, ov.hit, wo_w)) return ShiftStatus::occluded;
+      if (m_scene.trace_from(ov.hit, wo_w)) return ShiftStatus::occluded;
     } else {
       if (m_scene.occluded(m_scene.spawn_segment(ov.hit, bn.p()))) return ShiftStatus::occluded;
       wo_w = (bn.p() - ov.p()).normalized();
@@ -199,11 +199,11 @@ ShiftStatus ReconnectionShift::trace_next(const Path& base, int k, ShiftResult& 
   const Vertex& bn = base[k + 1];
   const Vertex& ov = o[k];
   // Rays leave from the vertex itself, as the base walk's (pathspace/scatter.h).
-  const Ray ray = k == 0 ? m_scene.camera().generate_ray(o.raster) : pathspace::continue_ray(m_scene, ov.hit, ov.wo_world);
+  const Ray ray = k == 0 ? m_scene.camera().generate_ray(o.raster) : m_scene.continue_ray(ov.hit, ov.wo_world);
   // The reverse shift reconnects at k+1 iff x'_k, x_k and x'_{k+1} are connectable; the
   // forward one did not, so an offset landing on a connectable vertex is not invertible.
   const bool check_inverse = k > 0 && !b.delta_lobe() && b.connectable && ov.connectable;
-  const auto hit = k == 0 ? m_scene.intersect(ray) : pathspace::trace_from(m_scene, ov.hit, ov.wo_world);
+  const auto hit = k == 0 ? m_scene.intersect(ray) : m_scene.trace_from(ov.hit, ov.wo_world);
   Vertex nv;
   if (!hit) {
     if (bn.kind != VertexKind::environment) return ShiftStatus::miss;
@@ -304,7 +304,7 @@ void ReconnectionShift::shift_nee(const Path& base, int k, ShiftResult& out) con
   const double J = reflection_jacobian(d3(bl.wo), wo_o, h);
   if (!(J > 0.0)) return fail(ShiftStatus::zero_contribution);
   ol.w = ov.hit.shading.to_world(wo_o.normalized().cast<float>());
-  const auto hit = pathspace::trace_from(m_scene, ov.hit, ol.w);
+  const auto hit = m_scene.trace_from(ov.hit, ol.w);
   ol.visible = true;
   ol.u = bl.u;
   if (hit) {

@@ -52,7 +52,7 @@ void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb&
 }  // namespace
 
 bool next_hit(const scene::Scene& scene, const scene::SurfaceHit& from, const Vec3& w, scene::SurfaceHit& out) {
-  const auto h = trace_from(scene, from, w);
+  const auto h = scene.trace_from(from, w);
   if (h) out = *h;
   return h.has_value();
 }
@@ -60,7 +60,7 @@ bool next_hit(const scene::Scene& scene, const scene::SurfaceHit& from, const Ve
 Ray anchored_ray(const scene::Scene& scene, const Vec3& p, const Vec3& w) {
   scene::SurfaceHit at;
   at.p = p;
-  return continue_ray(scene, at, w);
+  return scene.continue_ray(at, w);
 }
 
 namespace {
@@ -340,7 +340,7 @@ bool extend_subpath(const scene::Scene& scene, std::vector<BidirVertex>& path, i
     v.weight_out = bs->weight;
     at = surface_hit(v);
     from = &at;
-    ray = continue_ray(scene, at, wo);
+    ray = scene.continue_ray(at, wo);
   }
   if (is_black(beta)) return false;
   random_walk(scene, ray, beta, mode, params, rng, path, from);

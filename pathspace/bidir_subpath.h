@@ -41,8 +41,8 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
 bool extend_subpath(const scene::Scene& scene, std::vector<BidirVertex>& path, int n, scene::TransportMode mode,
                     core::Rng& rng);
 
-// Rays between subpath vertices leave from the vertex itself (pathspace/scatter.h,
-// trace_from: not Scene::spawn_ray's origin pushed along the normal), so consecutive
+// Rays between subpath vertices leave from the vertex itself (Scene::trace_from,
+// scene/scene.h: not Scene::spawn_ray's origin pushed along the normal), so consecutive
 // vertices lie on the sampled directions and the densities, cosines and shift Jacobians
 // evaluated from positions agree with the sampled ones to float round-off.
 // The first hit along w from surface vertex `from` (into `out`); false on a miss.

@@ -62,7 +62,7 @@ void PathBuilder::build_from_raster(const Vec2& raster, SampleStream& stream, Pa
   cv.connectable = false;
   Rgb beta = Rgb::Ones();
   for (int depth = 1; depth <= m_opt.max_depth; ++depth) {
-    const auto hit = from >= 0 ? trace_from(m_scene, path[from].hit, ray.d) : m_scene.intersect(ray);
+    const auto hit = from >= 0 ? m_scene.trace_from(path[from].hit, ray.d) : m_scene.intersect(ray);
     if (!hit) {
       Vertex& ev = path.append(Vertex());
       ev.kind = VertexKind::environment;
@@ -106,7 +106,7 @@ void PathBuilder::build_from_raster(const Vec2& raster, SampleStream& stream, Pa
     v.pdf = double(bs->pdf);
     v.f_cos = bs->weight * bs->pdf;
     v.rr = q;
-    ray = continue_ray(m_scene, *hit, wo);
+    ray = m_scene.continue_ray(*hit, wo);
     from = k;
   }
 }

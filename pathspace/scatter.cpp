@@ -17,28 +17,6 @@ std::optional<scene::BsdfSample> sample_dirac_lobe(const scene::Bsdf& bsdf, cons
   return std::nullopt;
 }
 
-Ray continue_ray(const scene::Scene& scene, const scene::SurfaceHit& hit, const Vec3& w) {
-  Ray r;
-  r.o = hit.p;
-  r.d = w;
-  r.tmin = scene.ray_epsilon() * (1.0f + hit.p.cwiseAbs().maxCoeff());
-  r.tmax = kInfinity;
-  return r;
-}
-
-std::optional<scene::SurfaceHit> trace_from(const scene::Scene& scene, const scene::SurfaceHit& hit, const Vec3& w) {
-  Ray r = continue_ray(scene, hit, w);
-  const bool planar = hit.shape >= 0 && scene.shapes()[size_t(hit.shape)]->kind() == scene::ShapeKind::mesh;
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    auto next = scene.intersect(r);
-    // A hit of the same mesh lying in the origin triangle's own plane (that triangle or a
-    // coplanar neighbour) is the ray re-finding its origin surface: skip past it.
-    if (!next || !planar || next->shape != hit.shape || std::abs(hit.ng.dot(next->p - hit.p)) > r.tmin) return next;
-    r.tmin = std::max(2.0f * r.tmin, 1.0001f * (next->p - hit.p).norm());
-  }
-  return std::nullopt;
-}
-
 double light_pdf(const scene::Scene& scene, const Vec3& from, const Vertex& light) {
   if (light.kind == VertexKind::environment) {
     const scene::EnvironmentEmitter* env = scene.environment();

@@ -13,19 +13,8 @@ inline bool consistent_side(const scene::SurfaceHit& hit, const Vec3& w_world, f
   return hit.ng.dot(w_world) * cos_local > 0.0f;
 }
 
-// The ray that continues a path from surface vertex `hit` in world direction w, and its
-// first hit. The origin is the vertex itself (tmin = the scene's ray epsilon, as in
-// Scene::occluded(a, b) and Mitsuba's mint), NOT Scene::spawn_ray's origin pushed along
-// the normal: with a pushed origin the next vertex is not on the sampled direction from
-// the vertex, so the stored direction, the cosines and the geometry of consecutive
-// vertices disagree by O(eps / (d cos)) relative -- 1e-4..1e-3 for ordinary diffuse
-// bounces and up to 20% for grazing ones (measured in the G-PT furnace), which breaks the
-// exact cancellations a shift relies on (reconnection Jacobians use vertex positions).
-// A ray leaving a planar mesh cannot hit that plane again: hits of the same mesh within
-// tmin of the origin triangle's plane (self-hits at grazing angles, where the rounding
-// of p over cos exceeds tmin) are skipped.
-Ray continue_ray(const scene::Scene& scene, const scene::SurfaceHit& hit, const Vec3& w);
-std::optional<scene::SurfaceHit> trace_from(const scene::Scene& scene, const scene::SurfaceHit& hit, const Vec3& w);
+// Paths continue from a surface vertex with Scene::continue_ray / Scene::trace_from (the
+// origin at the vertex, the one rule of every integrator and shift: scene/scene.h).
 
 inline scene::BsdfContext radiance_context(const scene::SurfaceHit& hit) {
   return scene::BsdfContext{hit.uv, scene::TransportMode::radiance};

@@ -103,6 +103,21 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
 
 bool Scene::occluded(const Ray& ray) const { return m_accel->occluded(ray); }
 
+bool Scene::trace_from(const SurfaceHit& from, const Vec3& d, SurfaceHit& out) const {
+  const Vec3 p = from.p, ng = from.ng;  // copies: `out` may alias `from`
+  const int shape = from.shape;
+  Ray r = continue_ray(from, d);
+  const bool planar = shape >= 0 && m_shapes[size_t(shape)]->kind() == ShapeKind::mesh;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    if (!intersect(r, out)) return false;
+    // A hit of the same mesh lying in the origin triangle's own plane (that triangle or a
+    // coplanar neighbour) is the ray re-finding its origin surface: skip past it.
+    if (!planar || out.shape != shape || std::abs(ng.dot(out.p - p)) > r.tmin) return true;
+    r.tmin = std::max(2.0f * r.tmin, 1.0001f * (out.p - p).norm());
+  }
+  return false;
+}
+
 bool Scene::occluded(const Vec3& a, const Vec3& b) const {
   const Vec3 d = b - a;
   const float len = d.norm();

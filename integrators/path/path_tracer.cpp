@@ -47,7 +47,9 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, PathCounters& count
   scene::SurfaceHit hit_storage;  // filled in place by every intersection (no optional copy)
   const scene::SurfaceHit* const hit = &hit_storage;
   for (int depth = 1; depth <= m_max_depth; ++depth) {
-    const bool found = m_scene.intersect(ray, hit_storage);
+    // Later segments continue from the vertex by the one rule of every integrator and
+    // shift (Scene::trace_from; `ray.d` is the sampled direction).
+    const bool found = depth == 1 ? m_scene.intersect(ray, hit_storage) : m_scene.trace_from(hit_storage, ray.d, hit_storage);
     ++counters.rays;
     const bool hide = depth == 1 && m_settings.hide_emitters;
     if (!found) {
@@ -95,7 +97,7 @@ Rgb PathTracer::radiance(const Ray& primary, core::Rng& rng, PathCounters& count
       }
       beta /= q;
     }
-    ray = m_scene.spawn_ray(*hit, wo);
+    ray.d = wo;
   }
   return L;
 }

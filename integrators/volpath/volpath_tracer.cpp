@@ -150,8 +150,11 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
   const scene::EnvironmentEmitter* env = m_scene.environment();
   SurfaceHit hit;
   if constexpr (!kMedia) ++c.media_skipped;
+  // After a surface vertex (or an index-matched crossing) the path continues by the one
+  // rule of every integrator and shift, Scene::trace_from; ray.o is then that vertex.
+  bool from_surface = false;
   for (int depth = 1; depth <= m_max_depth;) {
-    const bool found = m_scene.intersect(ray, hit);
+    const bool found = from_surface ? m_scene.trace_from(hit, ray.d, hit) : m_scene.intersect(ray, hit);
     ++c.rays;
     if constexpr (kMedia) {
       if (medium >= 0) {
@@ -179,6 +182,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           ray.d = wo;
           ray.tmin = 0.0f;
           ray.tmax = kInfinity;
+          from_surface = false;
           ++depth;
           continue;
         }
@@ -216,7 +220,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           break;
         }
         medium = scene::medium_toward(hit, ray.d, medium, m_camera_medium);
-        ray = m_scene.spawn_ray(hit, ray.d);
+        ray = m_scene.continue_ray(hit, ray.d);
+        from_surface = true;
         continue;
       }
     }
@@ -240,7 +245,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     prev_p = hit.p;
     if constexpr (kMedia) medium = scene::medium_toward(hit, wo, medium, m_camera_medium);
     if (!survive(beta, depth, m_settings.rr_depth, rng, c)) break;
-    ray = m_scene.spawn_ray(hit, wo);
+    ray = m_scene.continue_ray(hit, wo);
+    from_surface = true;
     ++depth;
   }
   return L;

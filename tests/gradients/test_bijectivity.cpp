@@ -295,8 +295,8 @@ FailureCounts failure_roundtrip(const scene::Scene& s, float threshold, int samp
         yv.wo_world = dir;
         yv.wo = yv.hit.shading.to_local(dir);
       }
-      ray = pathspace::continue_ray(s, yv.hit, yv.wo_world);
-      z = pathspace::trace_from(s, yv.hit, yv.wo_world);
+      ray = s.continue_ray(yv.hit, yv.wo_world);
+      z = s.trace_from(yv.hit, yv.wo_world);
     }
     pathspace::Vertex zv;
     if (z) {
