@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
     } else {
       ws.r.resize(n);
       ws.z.resize(n);
-      A.reweight_start(x.data(), p.b, g.data(), reg, p.alpha, nullptr, nullptr, ws.r.data(), ws.z.data(),
+      A.reweight_start(x.data(), p.b, g.data(), reg, p.alpha, nullptr, nullptr, ws.r.data(), nullptr,
                        row_rr.data(), row_bb.data(), threads);
     }
     const double weights_ms = 1e3 * t.seconds();
@@ -90,7 +90,9 @@ int main(int argc, char** argv) {
     if (separate) A.rhs(p.b, g.data(), rhs.data(), threads);
     const double rhs_ms = 1e3 * t.seconds();
     t.reset();
-    M.build(A, threads);
+    // As solve_l1: no hierarchy for a run that starts converged.
+    const CgStart start{row_rr.data(), row_bb.data(), false};
+    if (separate || !cg_start_converged(start, h, o.irls_cg_tolerance)) M.build(A, threads);
     const double build_ms = 1e3 * t.seconds();
     CgSettings s;
     s.max_iterations = o.irls_cg_iterations;
@@ -106,7 +108,6 @@ int main(int argc, char** argv) {
       mg_pcg(A, M, rhs.data(), copy.data(), zero, &ws);
       setup_ms = 1e3 * t.seconds();
     }
-    const CgStart start{row_rr.data(), row_bb.data()};
     t.reset();
     const CgStats st = mg_pcg(A, M, rhs.data(), x.data(), s, &ws, separate ? nullptr : &start);
     const double cg_ms = 1e3 * t.seconds();
@@ -130,6 +131,7 @@ int main(int argc, char** argv) {
     s.tolerance = 0.0;
     s.threads = threads;
     A.rhs(p.b, g.data(), rhs.data(), threads);
+    M.build(A, threads);
     double best = 1e30;
     for (int rep = 0; rep < 15; ++rep) {
       std::vector<Vec4> copy = x;
