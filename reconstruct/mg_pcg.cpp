@@ -160,7 +160,8 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
     Vec4* po = p_old;
     Vec4* pn = p_new;
     while (my_it < settings.max_iterations && (my_active[0] || my_active[1] || my_active[2])) {
-      // z = M^-1 r (its first red half-sweep is already in z) and the row sums of r.z.
+      // z = M^-1 r (the first run's first red half-sweep may be given in z) and the row
+      // sums of r.z.
       M.vcycle(r, z, rows, t, threads, sync, my_it == 0 && first_red_given, row_rz.data());
       sync();
       Vec4 beta = zero;
