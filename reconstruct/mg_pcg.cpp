@@ -160,7 +160,7 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
     Vec4* po = p_old;
     Vec4* pn = p_new;
     while (my_it < settings.max_iterations && (my_active[0] || my_active[1] || my_active[2])) {
-      // z = M^-1 r (the first run's first red half-sweep may be given in z) and the row
+      // z = M^-1 r (in the first iteration its first red half-sweep may be given in z), the row
       // sums of r.z.
       M.vcycle(r, z, rows, t, threads, sync, my_it == 0 && first_red_given, row_rz.data());
       sync();
