@@ -147,7 +147,7 @@ double GridOperator::reweight_start(const Vec4* x, const std::vector<Rgb>& b, co
         id[i] = d > 0.0f ? 1.0f / d : 0.0f;
         const Vec4 ri = f - (d * xr[i] + ax);
         r[base + i] = ri;
-        z[base + i] = ((i + size_t(y)) & 1) ? Vec4{} : ri * id[i];
+        if (z) z[base + i] = ((i + size_t(y)) & 1) ? Vec4{} : ri * id[i];
         accumulate(srr, ri * ri);
         accumulate(sbb, f * f);
       };

@@ -33,7 +33,8 @@ class GridOperator final : public ChunkedOperator {
   // unnormalized (the mean-1 normalization scales A and the right-hand side alike, so the
   // solution is the same) and the right-hand side rhs = H^T W b + alpha^2 P g is not
   // stored. Writes r = rhs - A x, z = r / d on the pixels with (x + y) even and 0 on the
-  // others (the multigrid V-cycle's first red half-step, multigrid.h), and per image row
+  // others (the multigrid V-cycle's first red half-step, multigrid.h; z = nullptr: not
+  // written, solve_l1 leaves it to the V-cycle: one stream less), and per image row
   // the sums of r.r and rhs.rhs (row_rr, row_bb: height() each). Sets the diagonal and its
   // inverse, not the incomplete Cholesky factor. Results do not depend on the thread
   // count. Returns the sum of the raw weights.

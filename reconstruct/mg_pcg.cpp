@@ -1,7 +1,8 @@
 // mg_pcg (multigrid.h): CG on the grid operator preconditioned by the multigrid V-cycle.
 // Per iteration: the V-cycle (two pipelined passes over level 0), the direction
-// p = z + beta p_old with q = A p and p.q, and the update x += alpha p, r -= alpha q with
-// the next V-cycle's first red half-step.
+// p = z + beta p_old with q = A p and p.q, and the update x += alpha p, r -= alpha q.
+// A run that starts converged (a given start, CgStart) returns before anything else: the
+// hierarchy need not be built for it (solve_l1 builds it only when needed).
 //
 // (Tried for issue 18: fusing the update into the next V-cycle's first pass, with A p
 // recomputed there instead of stored. IRLS runs end after ~2 iterations on average and
@@ -51,12 +52,37 @@ Vec4d stencil_row(const GridOperator& A, int y, const Vec4* up, const Vec4* mid,
 
 }  // namespace
 
+bool cg_start_converged(const CgStart& start, int height, double tolerance) {
+  Vec4d rr, bb;
+  for (int y = 0; y < height; ++y) {
+    rr += start.row_rr[y];
+    bb += start.row_bb[y];
+  }
+  for (int c = 0; c < 3; ++c)
+    if (std::sqrt(rr[c]) > tolerance * std::sqrt(std::max(bb[c], 1e-60))) return false;
+  return true;
+}
+
 CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x, const CgSettings& settings,
                CgWorkspace* workspace, const CgStart* start) {
   DP_CHECK(settings.max_iterations >= 0, "max_iterations must be >= 0");
   DP_CHECK(!start || (workspace && workspace->r.size() == A.pixels() && workspace->z.size() == A.pixels()),
            "mg_pcg: a given start needs the workspace holding r and z");
   DP_CHECK(start || rhs, "mg_pcg: no right-hand side");
+  if (start && cg_start_converged(*start, A.height(), settings.tolerance)) {
+    double rr[3], bb[3];
+    const bool active[3] = {false, false, false};
+    Vec4d s_rr, s_bb;
+    for (int y = 0; y < A.height(); ++y) {
+      s_rr += start->row_rr[y];
+      s_bb += start->row_bb[y];
+    }
+    for (int c = 0; c < 3; ++c) {
+      rr[c] = s_rr[c];
+      bb[c] = s_bb[c];
+    }
+    return cg_stats(0, active, rr, bb);
+  }
   DP_CHECK(!M.levels().empty() && M.levels()[0].w == A.width() && M.levels()[0].h == A.height(),
            "mg_pcg: multigrid not built for this operator");
   const int w = A.width(), h = A.height();
@@ -88,15 +114,8 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
   std::barrier<> barrier(threads);
   const std::function<void()> sync = threads > 1 ? std::function<void()>([&] { barrier.arrive_and_wait(); })
                                                  : std::function<void()>([] {});
-  const GridMultigrid::Level& L0 = M.levels()[0];
-  // z = the V-cycle's first red half-sweep of r on row y (fused into the CG update).
-  const auto first_red = [&](int y) {
-    const size_t base = size_t(y) * size_t(w);
-    const float* id = L0.inv_diag + base;
-    const Vec4 zero = {};
-    for (int i = 0; i < w; ++i) z[base + size_t(i)] = ((i + y) & 1) ? zero : r[base + size_t(i)] * id[i];
-  };
-
+  // Whether z holds the first V-cycle's first red half-sweep.
+  const bool first_red_given = start && start->first_red_done;
   const Vec4 zero = {};
   double rr[3] = {}, bb[3] = {};
   bool active[3] = {false, false, false};
@@ -106,7 +125,7 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
     const int y0 = rows[size_t(t)], y1 = rows[size_t(t) + 1];
     Vec4* halo_up = ws.scratch.data() + 2 * size_t(w) * size_t(t);
     Vec4* halo_down = halo_up + w;
-    // r = rhs - A x, the norms of r and rhs, the first red half-step (unless given).
+    // r = rhs - A x and the norms of r and rhs (unless given).
     for (int y = y0; y < y1 && start; ++y) {
       row_rr[size_t(y)] = start->row_rr[y];
       row_bb[size_t(y)] = start->row_bb[y];
@@ -123,7 +142,6 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
       }
       row_rr[size_t(y)] = srr;
       row_bb[size_t(y)] = sbb;
-      first_red(y);
     }
     sync();
     double my_rr[3], my_bb[3], my_limit[3], my_rz[3] = {};
@@ -142,8 +160,9 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
     Vec4* po = p_old;
     Vec4* pn = p_new;
     while (my_it < settings.max_iterations && (my_active[0] || my_active[1] || my_active[2])) {
-      // z = M^-1 r (its first red half-sweep is already in z) and the row sums of r.z.
-      M.vcycle(r, z, rows, t, threads, sync, true, row_rz.data());
+      // z = M^-1 r (in the first iteration its first red half-sweep may be given in z), the row
+      // sums of r.z.
+      M.vcycle(r, z, rows, t, threads, sync, my_it == 0 && first_red_given, row_rz.data());
       sync();
       Vec4 beta = zero;
       {
@@ -184,7 +203,8 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
         const Vec4d pq = total(row_pq);
         for (int c = 0; c < 3; ++c) alpha[c] = my_active[c] && pq[c] > 0.0 ? float(my_rz[c] / pq[c]) : 0.0f;
       }
-      // x += alpha p, r -= alpha q, r.r, and the next V-cycle's first half-sweep.
+      // x += alpha p, r -= alpha q, r.r. (The next V-cycle's first red half-sweep is its
+      // own first step: written here, z would be one more stream per iteration.)
       for (int y = y0; y < y1; ++y) {
         const size_t base = size_t(y) * size_t(w);
         Vec4d srr;
@@ -194,7 +214,6 @@ CgStats mg_pcg(const GridOperator& A, GridMultigrid& M, const Vec4* rhs, Vec4* x
           accumulate(srr, r[i] * r[i]);
         }
         row_rr[size_t(y)] = srr;
-        first_red(y);
       }
       sync();
       {

@@ -47,12 +47,49 @@ void relax_row(const GridMultigrid::Level& L, const Vec4* b, Vec4* x, int y, int
   if (i < w) pixel(i);
 }
 
-// The first red half-sweep from x = 0: x_i = b_i / d_i on red pixels, 0 on black ones.
-void first_red_row(const GridMultigrid::Level& L, const Vec4* b, Vec4* x, int y) {
-  const size_t base = size_t(y) * size_t(L.w);
+// The first red half-sweep from x = 0 (x_i = b_i / d_i on red pixels) and the black
+// half-sweep after it, on row y in one step: a black pixel's red neighbours are formed
+// from b as b_j / d_j (the values the red half-sweep writes, bitwise), so the step reads
+// no other row of x and needs no barrier between the two half-sweeps.
+void first_red_black_row(const GridMultigrid::Level& L, const Vec4* b, Vec4* x, int y) {
+  const int w = L.w;
+  const size_t base = size_t(y) * size_t(w);
+  const float* wx = L.wx + base;
+  const float* wy = L.wy + base;
+  const float* wu = y > 0 ? L.wy + base - size_t(w) : nullptr;
   const float* id = L.inv_diag + base;
-  const Vec4 zero = {};
-  for (int i = 0; i < L.w; ++i) x[base + size_t(i)] = ((i + y) & 1) ? zero : b[base + size_t(i)] * id[i];
+  const float* id_up = y > 0 ? id - w : nullptr;
+  const float* id_down = y + 1 < L.h ? id + w : nullptr;
+  const Vec4* bb = b + base;
+  const Vec4* up = y > 0 ? bb - w : nullptr;
+  const Vec4* down = y + 1 < L.h ? bb + w : nullptr;
+  Vec4* xx = x + base;
+  const auto red = [&](int i) { return bb[i] * id[i]; };
+  // Same sums in the same order as relax_row.
+  const auto black = [&](int i) {
+    Vec4 s = bb[i];
+    if (i > 0) s += wx[i - 1] * red(i - 1);
+    if (i + 1 < w) s += wx[i] * red(i + 1);
+    if (up) s += wu[i] * (up[i] * id_up[i]);
+    if (down) s += wy[i] * (down[i] * id_down[i]);
+    xx[i] = s * id[i];
+  };
+  // Reads come from b only: the red and the black pixels can be written in any order.
+  for (int i = y & 1; i < w; i += 2) xx[i] = red(i);
+  int i = (y + 1) & 1;
+  if (i == 0) {
+    black(0);
+    i = 2;
+  }
+  if (up && down) {
+    for (; i + 1 < w; i += 2)
+      xx[i] = (bb[i] + wx[i - 1] * red(i - 1) + wx[i] * red(i + 1) + wu[i] * (up[i] * id_up[i]) +
+               wy[i] * (down[i] * id_down[i])) *
+              id[i];
+  } else {
+    for (; i + 1 < w; i += 2) black(i);
+  }
+  if (i < w) black(i);
 }
 
 // Residual b - A x of fine row y into res[0..w).
@@ -205,7 +242,7 @@ namespace {
 
 // One step of a sweep sequence applied to a single row (see run_steps).
 struct Step {
-  enum Kind { first_red, relax, restrict_residual, prolong, dot } kind;
+  enum Kind { first_red_black, relax, restrict_residual, prolong, dot } kind;
   int color = 0;
 };
 
@@ -224,8 +261,8 @@ void run_steps(const GridMultigrid::Level& L, const Vec4* b, Vec4* x, GridMultig
   const auto run = [&](int j, int y) {
     const Step& st = steps[j];
     switch (st.kind) {
-      case Step::first_red:
-        first_red_row(L, b, x, y);
+      case Step::first_red_black:
+        first_red_black_row(L, b, x, y);
         break;
       case Step::relax:
         relax_row(L, b, x, y, st.color);
@@ -284,8 +321,7 @@ void GridMultigrid::cycle(size_t l, const Vec4* b, Vec4* x, const std::vector<in
   steps.reserve(size_t(4 * std::max(pre_sweeps, coarsest_sweeps) + 3));
   if (l + 1 == m_levels.size()) {
     // Coarsest level (one thread): palindromic R B (R B)^(k-1) (B R)^k.
-    if (!first_red_done) steps.push_back({Step::first_red, 0});
-    steps.push_back({Step::relax, 1});
+    steps.push_back(first_red_done ? Step{Step::relax, 1} : Step{Step::first_red_black, 0});
     for (int i = 1; i < coarsest_sweeps; ++i) {
       steps.push_back({Step::relax, 0});
       steps.push_back({Step::relax, 1});
@@ -301,8 +337,7 @@ void GridMultigrid::cycle(size_t l, const Vec4* b, Vec4* x, const std::vector<in
   Level& C = m_levels[l + 1];
   // Pre-smoothing (red, black) x pre_sweeps from x = 0, then the residual summed into
   // the coarse right-hand side, all in one pass.
-  if (!first_red_done) steps.push_back({Step::first_red, 0});
-  steps.push_back({Step::relax, 1});
+  steps.push_back(first_red_done ? Step{Step::relax, 1} : Step{Step::first_red_black, 0});
   for (int i = 1; i < pre_sweeps; ++i) {
     steps.push_back({Step::relax, 0});
     steps.push_back({Step::relax, 1});

@@ -87,13 +87,19 @@ class GridMultigrid {
 };
 
 // A CG start computed by the caller (GridOperator::reweight_start): the workspace's r
-// holds rhs - A x, its z the V-cycle's first red half-step of r (r / d on the pixels with
-// (x + y) even, 0 on the others), and row_rr / row_bb per image row the sums of r.r and
-// rhs.rhs.
+// holds rhs - A x, its z (if first_red_done) the V-cycle's first red half-step of r
+// (r / d on the pixels with (x + y) even, 0 on the others), and row_rr / row_bb per image
+// row the sums of r.r and rhs.rhs.
 struct CgStart {
   const Vec4d* row_rr = nullptr;
   const Vec4d* row_bb = nullptr;
+  bool first_red_done = true;  // false: z is not read (the first V-cycle forms it)
 };
+
+// Whether mg_pcg from `start` stops at once: every channel's ||r|| <= tolerance ||rhs||
+// (the same test, on the same sums). Such a run reads neither the workspace nor the
+// multigrid hierarchy.
+bool cg_start_converged(const CgStart& start, int height, double tolerance);
 
 // Multigrid-preconditioned CG on A x = rhs (x = initial guess, warm start). `M` must have
 // been built from A's current weights. With `start` (which needs `workspace`), rhs is not

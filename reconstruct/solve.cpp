@@ -117,7 +117,8 @@ class Operator {
   }
   // One IRLS reweighting at x and the warm-started CG that follows, for the multigrid
   // grid solver: the fused reweight_start (grid_operator.h) replaces setting the weights,
-  // forming the right-hand side and the CG's first residual.
+  // forming the right-hand side and the CG's first residual (the first V-cycle forms its
+  // own first red half-step).
   CgStats reweight_solve(std::vector<Vec4>& x, const std::vector<Rgb>& b, const std::vector<Vec4>& g4, double reg,
                          float alpha, const float* user_rows, const float* user_pixels, const CgSettings& s,
                          CgWorkspace& ws) {
@@ -126,10 +127,11 @@ class Operator {
     ws.z.resize(x.size());
     m_row_rr.resize(h);
     m_row_bb.resize(h);
-    m_grid->reweight_start(x.data(), b, g4.data(), reg, alpha, user_rows, user_pixels, ws.r.data(), ws.z.data(),
+    m_grid->reweight_start(x.data(), b, g4.data(), reg, alpha, user_rows, user_pixels, ws.r.data(), nullptr,
                            m_row_rr.data(), m_row_bb.data(), s.threads);
-    m_mg->build(*m_grid, s.threads);
-    const CgStart start{m_row_rr.data(), m_row_bb.data()};
+    const CgStart start{m_row_rr.data(), m_row_bb.data(), false};
+    // The last reweightings usually start converged: no hierarchy needed for them.
+    if (!cg_start_converged(start, m_grid->height(), s.tolerance)) m_mg->build(*m_grid, s.threads);
     return mg_pcg(*m_grid, *m_mg, nullptr, x.data(), s, &ws, &start);
   }
   bool fused_reweighting() const { return m_mg != nullptr; }
