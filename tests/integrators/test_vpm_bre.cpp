@@ -246,7 +246,7 @@ TEST_CASE("vpm, bre: converge to volpath's image on a box with media", "[stat]")
     Config c;
     c.name = name;
     c.photons = kBoxPhotons;
-    const Runs runs = estimator_runs(*s, c, 8, 700);
+    const Runs runs = estimator_runs(*s, c, 4, 700);
     const double mean_ratio = test::welch_ratio(test::moments(runs.back()), test::moments(ref.back()), 0.01);
     // The kernel's bias with a fixed radius (alpha = 1) at 4x and 1x: larger at 4x.
     Config big = c, small = c;
