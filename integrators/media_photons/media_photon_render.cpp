@@ -1,6 +1,7 @@
 #include "integrators/media_photons/media_photon_render.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/progress.h"
 #include "core/thread_pool.h"
