@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "integrators/integrator.h"
 #include "integrators/bdpt/bdpt_integrator.h"
+#include "integrators/bre/bre_integrator.h"
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gbdpt/gbdpt_integrator.h"
 #include "integrators/gpm/gpm_integrator.h"
@@ -15,6 +16,7 @@
 #include "integrators/pr/pr_integrator.h"
 #include "integrators/vcm/vcm_integrator.h"
 #include "integrators/volpath/volpath_integrator.h"
+#include "integrators/vpm/vpm_integrator.h"
 
 namespace dp::integrators {
 
@@ -34,6 +36,8 @@ const std::vector<Entry>& registry() {
   static const std::vector<Entry> kRegistry = {
       {"path", make<PathIntegrator>, "unidirectional path tracer, NEE + MIS (reference); delegates to volpath on a scene with media"},
       {"volpath", make<VolpathIntegrator>, "volumetric path tracer: homogeneous media, free-flight sampling, NEE through index-matched boundaries, MIS with the phase function"},
+      {"vpm", make<VpmIntegrator>, "progressive volumetric photon mapping: photons at medium scattering events, point queries along camera segments in media, 3D kernel (Jensen & Christensen 1998; Gruson et al. 2018, Sec. 4)"},
+      {"bre", make<BreIntegrator>, "progressive beam radiance estimate: camera segments in media as beam queries against medium photons, 2D kernel (Jarosz et al. 2008; Gruson et al. 2018, Sec. 5.1)"},
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},

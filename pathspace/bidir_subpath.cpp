@@ -277,6 +277,19 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
   random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
 }
 
+bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta) {
+  const float u_light = rng.uniform();
+  const Vec2 u_pos = rng.uniform2(), u_dir = rng.uniform2();
+  float pmf = 0.0f;
+  const scene::Emitter* e = scene.sample_emitter(u_light, pmf);
+  if (!e) return false;
+  BidirVertex y0;
+  float pdf_ray = 0.0f;
+  if (!light_endpoint(scene, e, u_pos, u_dir, y0, ray, pdf_ray)) return false;
+  beta = y0.beta * light_emit_cos(y0, ray.d) / pdf_ray;  // as leave_light
+  return !is_black(beta) && is_finite(beta);
+}
+
 bool extend_subpath(const scene::Scene& scene, std::vector<BidirVertex>& path, int n, scene::TransportMode mode,
                     core::Rng& rng) {
   if (n <= 0) return n == 0;

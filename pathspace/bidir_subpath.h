@@ -29,6 +29,13 @@ void camera_subpath(const scene::Scene& scene, const Vec2& raster, const Subpath
 void light_subpath(const scene::Scene& scene, const SubpathParams& params, core::Rng& rng,
                    std::vector<BidirVertex>& out);
 
+// A ray leaving a light chosen by Scene::sample_emitter, drawn as light_subpath draws
+// y_0 and its direction (same random numbers), and the throughput it carries,
+// Le |cos| / (p(y_0) p(direction)) (lights at infinity: planar origin density). False
+// when nothing is emitted. Light tracers that walk their own paths (photons through
+// media, integrators/media_photons) start here.
+bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta);
+
 // Continues `path` (a subpath in `mode`'s order: light-first for importance, camera-
 // first for radiance) by exactly n vertices, without Russian roulette: an empty path
 // starts at a new endpoint (the pinhole, then a raster uniform on the whole image; a

@@ -109,6 +109,11 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
   return f * tr * ds.radiance * (weight / light_pdf);
 }
 
+template Rgb VolpathTracer::next_event_surface<true>(const SurfaceHit&, const Vec3&, const BsdfContext&, int,
+                                                     core::Rng&, VolpathCounters&) const;
+template Rgb VolpathTracer::next_event_surface<false>(const SurfaceHit&, const Vec3&, const BsdfContext&, int,
+                                                      core::Rng&, VolpathCounters&) const;
+
 Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng,
                                      VolpathCounters& c) const {
   const float u_light = rng.uniform();

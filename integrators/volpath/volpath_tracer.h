@@ -54,9 +54,8 @@ class VolpathTracer {
   // more crossings than this end the path (or block the shadow ray), counted.
   static constexpr int kMaxNullCrossings = 256;
 
- private:
-  template <bool kMedia>
-  Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
+  // Also used by the photon density estimators' camera paths (integrators/media_photons),
+  // whose surface vertices are volpath's:
   // NEE at a surface vertex in medium `medium` (the medium on the light's side is found
   // from the sampled direction).
   template <bool kMedia>
@@ -68,6 +67,10 @@ class VolpathTracer {
   // boundaries up to r.tmax); 0 if a surface blocks it. `target`: the light point, or
   // nullptr for a light at infinity.
   Rgb shadow_transmittance(Ray r, int medium, const Vec3* target, VolpathCounters& counters) const;
+
+ private:
+  template <bool kMedia>
+  Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
 
   const scene::Scene& m_scene;
   VolpathSettings m_settings;

@@ -1,0 +1,35 @@
+// Iteration driver of the volumetric photon density estimators (`vpm`, `bre`). Iteration
+// i (0-based, global): trace `photons` light paths through the media (photon_tracer.h),
+// build the photon BVH, set the kernel radius r_i (volume_kernel.h, `kernel_dim`-
+// dimensional), then render one camera path per pixel over 16x16 tiles in parallel
+// (media_camera.h) with the integrator's MediumGather. The image is the average of the
+// complete iterations (an interrupted one is dropped whole). `--spp` = iterations;
+// `--time` runs whole iterations until the budget is used. Raw buffers as `path`'s
+// ("radiance" sums, "spp" = iterations per pixel), so `--partial`/`--mpi`/`merge` work:
+// part k of n runs the global iterations k, k + n, ... with their own radii and streams.
+// On a scene without media no photon is traced and the camera paths run without medium
+// code (counters <prefix>.media_skipped, <prefix>.photon_paths = 0).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "integrators/integrator.h"
+#include "integrators/media_photons/media_camera.h"
+#include "integrators/media_photons/media_photon_settings.h"
+#include "integrators/media_photons/photon_bvh.h"
+
+namespace dp::integrators {
+
+// The gather of one iteration: its photons (BVH), kernel radius and emitted path count N.
+using MakeGather =
+    std::function<std::unique_ptr<MediumGather>(const PhotonBvh& photons, float radius, int64_t light_paths)>;
+
+RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
+                                  const MediaPhotonSettings& settings, int kernel_dim, const MakeGather& make_gather);
+
+// First iteration's radius: radius_scale x the scene's bounding-box diagonal.
+double initial_media_radius(const scene::Scene& scene, const MediaPhotonSettings& settings);
+
+}  // namespace dp::integrators

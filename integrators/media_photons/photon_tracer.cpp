@@ -1,0 +1,155 @@
+#include "integrators/media_photons/photon_tracer.h"
+
+#include <algorithm>
+
+#include "core/rng.h"
+#include "core/thread_pool.h"
+#include "integrators/volpath/volpath_tracer.h"  // kMaxNullCrossings
+#include "pathspace/bidir_subpath.h"
+#include "scene/media/free_flight.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
+
+namespace dp::integrators {
+
+PhotonTraceCounters& PhotonTraceCounters::operator+=(const PhotonTraceCounters& o) {
+  paths += o.paths;
+  stored += o.stored;
+  surface_events += o.surface_events;
+  null_crossings += o.null_crossings;
+  rr_terminated += o.rr_terminated;
+  null_limit += o.null_limit;
+  nan_dropped += o.nan_dropped;
+  return *this;
+}
+
+void PhotonTraceCounters::flush(core::Stats& stats, const std::string& prefix) const {
+  stats.add(prefix + ".photon_paths", paths);
+  stats.add(prefix + ".photons_stored", stored);
+  stats.add(prefix + ".photon_surface_events", surface_events);
+  stats.add(prefix + ".photon_null_crossings", null_crossings);
+  stats.add(prefix + ".photon_rr_terminated", rr_terminated);
+  stats.add(prefix + ".fail.photon_null_limit", null_limit);
+  stats.add(prefix + ".photon_nan_dropped", nan_dropped);
+}
+
+namespace {
+
+constexpr int64_t kChunk = 4096;  // light paths per work item (and random stream)
+
+void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
+               std::vector<MediumPhoton>& out, PhotonTraceCounters& c) {
+  ++c.paths;
+  Ray ray;
+  Rgb beta;
+  if (!pathspace::emit_light_ray(scene, rng, ray, beta)) return;
+  const float beta0 = max_component(beta);
+  const int cam_medium = scene.camera_medium();
+  const int max_store = params.max_depth - 1;  // a gather needs at least one camera segment
+  scene::SurfaceHit hit;
+  bool found = scene.intersect(ray, hit);
+  // The medium the light sits in: the near side of the first surface if it is a boundary.
+  int medium = found ? scene::medium_toward(hit, -ray.d, cam_medium, cam_medium) : cam_medium;
+  int nulls = 0;
+  for (int s = 1; s <= max_store;) {
+    if (medium >= 0) {
+      const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
+      const float u_channel = rng.uniform(), u_distance = rng.uniform();
+      const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
+      if (is_black(beta)) return;
+      if (ff.scattered) {
+        const Vec3 p = ray.at(ff.t);
+        if (!is_finite(beta) || !p.allFinite()) {
+          ++c.nan_dropped;
+          return;
+        }
+        out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium)});
+        ++c.stored;
+        if (s == max_store) return;
+        ray.o = p;
+        ray.d = scene::HenyeyGreenstein(med.phase).sample(ray.d, rng.uniform2());  // weight rho_p / pdf = 1
+        ray.tmin = 0.0f;
+        ray.tmax = kInfinity;
+        ++s;
+        if (s > params.rr_depth) {
+          const float q = std::min(0.95f, max_component(beta) / beta0);
+          if (!(rng.uniform() < q)) {
+            ++c.rr_terminated;
+            return;
+          }
+          beta /= q;
+        }
+        found = scene.intersect(ray, hit);
+        continue;
+      }
+    }
+    if (!found) return;
+    if (scene::is_index_matched(hit)) {  // not a vertex: switch media, keep direction and depth
+      ++c.null_crossings;
+      if (++nulls > VolpathTracer::kMaxNullCrossings) {
+        ++c.null_limit;
+        return;
+      }
+      medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
+      ray = scene.continue_ray(hit, ray.d);  // the one continuation rule (scene/scene.h)
+      found = scene.trace_from(hit, ray.d, hit);
+      continue;
+    }
+    if (!hit.bsdf) return;
+    const Vec3 wi_local = hit.shading.to_local(-ray.d);
+    if (!(hit.ng.dot(-ray.d) * wi_local.z() > 0.0f)) return;  // sidedness, as volpath
+    ++c.surface_events;
+    const scene::BsdfContext ctx{hit.uv, scene::TransportMode::importance};
+    const float u_lobe = rng.uniform();
+    const Vec2 u = rng.uniform2();
+    const auto bs = hit.bsdf->sample(ctx, wi_local, u_lobe, u);
+    if (!bs || is_black(bs->weight)) return;
+    const Vec3 wo = hit.shading.to_world(bs->wo);
+    if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) return;
+    beta *= bs->weight;
+    medium = scene::medium_toward(hit, wo, medium, cam_medium);
+    ++s;
+    if (s > params.rr_depth) {
+      const float q = std::min(0.95f, max_component(beta) / beta0);
+      if (!(rng.uniform() < q)) {
+        ++c.rr_terminated;
+        return;
+      }
+      beta /= q;
+    }
+    ray = scene.continue_ray(hit, wo);
+    found = scene.trace_from(hit, wo, hit);
+  }
+}
+
+}  // namespace
+
+bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
+                          std::vector<MediumPhoton>& out, PhotonTraceCounters& counters) {
+  const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
+  std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
+  std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
+  std::vector<char> done(size_t(chunks), 0);
+  core::parallel_for(
+      chunks, params.threads,
+      [&](int64_t k, int) {
+        core::Rng rng(params.seed, (uint64_t(params.iteration) << 32) | 0x40000000ull | uint64_t(k));
+        const int64_t n = std::min(kChunk, params.paths - k * kChunk);
+        for (int64_t i = 0; i < n; ++i) trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)]);
+        done[size_t(k)] = 1;
+      },
+      stop);
+  if (std::find(done.begin(), done.end(), 0) != done.end()) return false;
+  size_t total = 0;
+  for (const auto& p : parts) total += p.size();
+  out.clear();
+  out.reserve(total);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    out.insert(out.end(), parts[k].begin(), parts[k].end());
+    counters += chunk_counters[k];
+  }
+  return true;
+}
+
+}  // namespace dp::integrators
