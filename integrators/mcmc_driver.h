@@ -11,6 +11,10 @@
 //     (b, bootstrap time, chains, rounds) for the JSON sidecar.
 // Image value of a buffer = scale() * splats, scale = b W H / mutations (the raster
 // density on the image is 1 / (W H)).
+// Parts (RenderOptions::part/parts, issue 17): every part runs the whole bootstrap (same
+// seed: same b, same start states) and only its chains (chain_scheduler.h); norm() holds
+// this part's share of b's samples and its mutations (mcmc_raw.h), so the parts' norms
+// summed give the single render's b and scale.
 #pragma once
 
 #include <functional>
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "integrators/chain_scheduler.h"
+#include "integrators/mcmc_raw.h"
 #include "mcmc/bootstrap.h"
 #include "mcmc/chain.h"
 
@@ -48,7 +53,8 @@ class McmcDriver {
   const ChainRunResult& run(const RenderOptions& options, const std::string& label, const Splat& splat,
                             const AfterStep& after = {}, const AfterRound& after_round = {});
 
-  double b() const { return m_b; }          // refined normalisation (after run)
+  double b() const { return m_b; }          // refined normalisation of this part's samples (after run)
+  const McmcNorm& norm() const { return m_norm; }  // this part's share (after run)
   double scale() const;                      // b W H / mutations
   int chains() const { return int(m_chains.size()); }
   mcmc::Target& target(int c) { return *m_targets[size_t(c)]; }
@@ -69,6 +75,8 @@ class McmcDriver {
   std::vector<double> m_large_f;
   ChainRunResult m_run;
   double m_b = 0;
+  McmcNorm m_norm;
+  mcmc::SampleShare m_share;  // this part's bootstrap samples
 };
 
 }  // namespace dp::integrators
