@@ -22,6 +22,7 @@
 
 #include "core/math.h"
 #include "integrators/integrator.h"
+#include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
 
@@ -58,6 +59,14 @@ struct ChainRunResult {
 
 using ChainStep = std::function<void(int chain, int64_t n, SplatList& out, int thread)>;
 
+// The chain count of a `chains` setting: the setting when > 0, else 4 per thread -- but
+// for a render split into parts 16 per part, so that parts on machines with different
+// thread counts still share one chain set (each chain owned by one part, the quotas of
+// the single render of that chain set).
+inline int resolve_chains(int setting, const RenderOptions& options) {
+  if (setting > 0) return setting;
+  return options.parts > 1 ? 16 * options.parts : 4 * resolve_threads(options);
+}
 // Whether chain c is one of this part's (ChainSchedule::part/parts).
 inline bool owns_chain(const ChainSchedule& sc, int c) { return sc.parts <= 1 || c % sc.parts == sc.part; }
 // Mutations chain c runs in --spp mode (total / chains, the first total % chains one more).

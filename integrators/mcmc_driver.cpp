@@ -19,7 +19,7 @@ McmcDriver::McmcDriver(const mcmc::TargetFactory& make, const McmcConfig& config
   m_bootstrap_seconds = timer.seconds();
   m_b = m_boot->b();
   // f == 0 everywhere: a black image, no chain can start.
-  const int chains = m_boot->select(0.5) < 0 ? 0 : (m_cfg.chains > 0 ? m_cfg.chains : 4 * threads);
+  const int chains = m_boot->select(0.5) < 0 ? 0 : resolve_chains(m_cfg.chains, options);
   for (int c = 0; c < chains; ++c) {
     m_targets.push_back(make());
     m_chains.emplace_back(*m_targets.back(), m_cfg.chain, options.seed, uint64_t(c));

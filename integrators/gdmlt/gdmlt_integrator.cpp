@@ -158,7 +158,7 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
     direct.catch_up(whole_rounds(whole));
   }
 
-  core::RawImage raw = gdmlt_raw(run, norm, features, ao.get(), m_settings, w, h);
+  core::RawImage raw = gdmlt_raw(run, norm, features, ao.get(), m_settings, options, w, h);
   direct.write(raw);
   // The layers: the code a merge of parts runs (one Poisson reconstruction).
   if (options.raw) {

@@ -55,7 +55,7 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
   const std::vector<mcmc::WeightedMutator>& mutators = set.list();
 
   // b_g = b E[factor] and the start states (header), in parallel blocks, deterministic.
-  const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
+  const int n_chains = seeder.b() > 0.0 ? resolve_chains(settings.chains, options) : 0;
   const int n_cand = seeder.b() > 0.0 ? std::max(settings.candidates, 4 * n_chains) : 0;
   const uint64_t cand_seed = core::mix64(options.seed ^ 0x6D17'0000'0000'0001ull);
   std::vector<Candidate> cand(static_cast<size_t>(n_cand));

@@ -4,6 +4,7 @@
 #include <string>
 #include <type_traits>
 
+#include "core/error.h"
 #include "gradients/symmetric_gradient.h"
 #include "integrators/direct_pass.h"
 #include "integrators/gdmlt/gdmlt_path.h"
@@ -30,18 +31,21 @@ core::Image feature_image(const std::vector<T>& v, int w, int h) {
   return img;
 }
 
-// The mean of a replicated buffer over the parts that hold it (exact: equal floats).
+// A per-pixel buffer stored by one part per pixel (header), as floats; strict: every
+// pixel must be there (else 0 where a part is missing).
 template <typename T>
-std::vector<T> replicated(const core::RawImage& raw, const std::string& name) {
+std::vector<T> stored(const core::RawImage& raw, const std::string& name, bool strict = true) {
   const std::vector<Rgbd>& sum = raw.sum(name);
-  const std::vector<int64_t>& n = raw.count("replicas");
+  const std::vector<int64_t>& n = raw.count("features.n");
   std::vector<T> out(sum.size());
   for (size_t i = 0; i < sum.size(); ++i) {
-    const Rgbd m = n[i] > 0 ? Rgbd(sum[i] / double(n[i])) : Rgbd::Zero();
+    if (n[i] != 1 && (strict || n[i] > 1))
+      throw ValueError("gdmlt: pixel " + std::to_string(i) + " of buffer '" + name + "' is stored " +
+                       std::to_string(n[i]) + " times, not once (merge every part of the render exactly once)");
     if constexpr (std::is_same_v<T, float>)
-      out[i] = float(m[0]);
+      out[i] = float(sum[i][0]);
     else
-      out[i] = T(float(m[0]), float(m[1]), float(m[2]));
+      out[i] = T(float(sum[i][0]), float(sum[i][1]), float(sum[i][2]));
   }
   return out;
 }
@@ -57,7 +61,8 @@ kernels_adaptive::PairKernel gdmlt_kernel(const GdmltSettings& settings, const k
 }
 
 core::RawImage gdmlt_raw(const ChainRunResult& run, const McmcNorm& norm, const kernels_adaptive::Features& features,
-                         const gradients::AoMap* ao, const GdmltSettings& settings, int width, int height) {
+                         const gradients::AoMap* ao, const GdmltSettings& settings, const RenderOptions& options,
+                         int width, int height) {
   core::RawImage raw = empty_raw(width, height);
   raw.sums["primal"] = run.sums[kGdmltPrimal];
   raw.sums["density"] = run.sums[kGdmltDensity];
@@ -65,9 +70,11 @@ core::RawImage gdmlt_raw(const ChainRunResult& run, const McmcNorm& norm, const 
   norm.write(raw);
   const size_t n = raw.pixels();
   const bool adaptive = settings.kernel == "adaptive";
+  auto mine = [&](size_t i) { return options.parts <= 1 || int(i % size_t(options.parts)) == options.part; };
   if (adaptive) {
-    std::vector<Rgbd> normal(n), albedo(n), depth(n);
+    std::vector<Rgbd> normal(n, Rgbd::Zero()), albedo(n, Rgbd::Zero()), depth(n, Rgbd::Zero());
     for (size_t i = 0; i < n; ++i) {
+      if (!mine(i)) continue;
       normal[i] = features.normal[i].cast<double>();
       albedo[i] = features.albedo[i].cast<double>();
       depth[i] = Rgbd::Constant(double(features.depth[i]));
@@ -77,13 +84,19 @@ core::RawImage gdmlt_raw(const ChainRunResult& run, const McmcNorm& norm, const 
     raw.sums["features.depth"] = std::move(depth);
   }
   if (ao) {
-    std::vector<Rgbd> a(n);
+    std::vector<Rgbd> a(n, Rgbd::Zero());
     for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        a[size_t(y) * size_t(width) + size_t(x)] = Rgbd::Constant(double(std::max(0.0f, ao->at_pixel(x, y))));  // miss: 0
+      for (int x = 0; x < width; ++x) {
+        const size_t i = size_t(y) * size_t(width) + size_t(x);
+        if (mine(i)) a[i] = Rgbd::Constant(double(std::max(0.0f, ao->at_pixel(x, y))));  // miss: 0
+      }
     raw.sums["ao"] = std::move(a);
   }
-  if (adaptive || ao) raw.counts["replicas"] = std::vector<int64_t>(n, 1);
+  if (adaptive || ao) {
+    std::vector<int64_t> stored_here(n, 0);
+    for (size_t i = 0; i < n; ++i) stored_here[i] = mine(i) ? 1 : 0;
+    raw.counts["features.n"] = std::move(stored_here);
+  }
   return raw;
 }
 
@@ -97,9 +110,9 @@ void add_gdmlt_layers(const core::RawImage& raw, const RenderOptions& options, c
   if (settings.kernel == "adaptive") {
     features.width = w;
     features.height = h;
-    features.normal = replicated<Vec3>(raw, "features.normal");
-    features.albedo = replicated<Rgb>(raw, "features.albedo");
-    features.depth = replicated<float>(raw, "features.depth");
+    features.normal = stored<Vec3>(raw, "features.normal");
+    features.albedo = stored<Rgb>(raw, "features.albedo");
+    features.depth = stored<float>(raw, "features.depth");
   }
   const kernels_adaptive::PairKernel kernel = gdmlt_kernel(settings, features, w, h);
   const int64_t rows = int64_t(kernel.rows.size());
@@ -145,7 +158,7 @@ void add_gdmlt_layers(const core::RawImage& raw, const RenderOptions& options, c
     result.layers.push_back({"features.depth", feature_image(features.depth, w, h)});
   }
   result.layers.push_back({"gradient_energy", std::move(energy)});
-  if (raw.sums.count("ao")) result.layers.push_back({"ao", feature_image(replicated<float>(raw, "ao"), w, h)});
+  if (raw.sums.count("ao")) result.layers.push_back({"ao", feature_image(stored<float>(raw, "ao", false), w, h)});
   const int64_t mutations = norm.mutations;
   result.layers.push_back(
       {"density", image_of(raw.sum("density"), mutations > 0 ? double(pixels) / double(mutations) : 0.0)});

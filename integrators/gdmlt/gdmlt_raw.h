@@ -5,10 +5,12 @@
 // reconstruction runs once, on the summed buffers:
 //   sums   "primal", "density", "rows.<k>" (the kernel's rows, gdmlt_path.h's layers),
 //          "direct" (+ count), the normalisation of integrators/mcmc_raw.h;
-//   replicated per-pixel buffers every part computes alike from the seed (the feature
-//   pass of kernel=adaptive: "features.normal/albedo/depth"; INCMW's "ao"), summed with
-//   the count "replicas" (1 per part): their mean is exact (float values summed in
-//   double), so finish() rebuilds the very adaptive kernel the chains used.
+//   per-pixel buffers every part computes alike from the seed (the feature pass of
+//   kernel=adaptive: "features.normal/albedo/depth"; INCMW's "ao") are stored by one
+//   part per pixel (pixel p by part p mod parts, the others add 0) with the count
+//   "features.n" (1 where stored): the sum of all parts is the single render's buffer,
+//   exactly, so finish() rebuilds the very adaptive kernel the chains used. A merge that
+//   lacks a part cannot rebuild it (an error says so); the standard kernel needs nothing.
 #pragma once
 
 #include <memory>
@@ -31,7 +33,8 @@ kernels_adaptive::PairKernel gdmlt_kernel(const GdmltSettings& settings, const k
 // The raw buffers of a render: the chains' layers (run.sums), its normalisation, the
 // replicated buffers (features when the kernel is adaptive, `ao` when not null).
 core::RawImage gdmlt_raw(const ChainRunResult& run, const McmcNorm& norm, const kernels_adaptive::Features& features,
-                         const gradients::AoMap* ao, const GdmltSettings& settings, int width, int height);
+                         const gradients::AoMap* ao, const GdmltSettings& settings, const RenderOptions& options,
+                         int width, int height);
 
 // Adds to `result` the layers render() gives (and min/max spp, partial, solve times, b),
 // from one render's raw buffers or the sum of its parts'.

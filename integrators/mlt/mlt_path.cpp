@@ -60,7 +60,6 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();
   const int64_t pixels = int64_t(w) * h;
-  const int threads = resolve_threads(options);
 
   // Direct light (<= 2 segments) by the path tracer, the chains the rest (Mitsuba 0.6).
   const bool direct = settings.direct_spp >= 0 && settings.replay_chain < 0;
@@ -70,7 +69,7 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
 
   const PathMutatorSet set(scene, settings.path_mutations, so.min_depth, options.max_depth, settings.path_fault);
   const std::vector<mcmc::WeightedMutator>& mutators = set.list();
-  const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
+  const int n_chains = seeder.b() > 0.0 ? resolve_chains(settings.chains, options) : 0;
   ChainSchedule sc;
   sc.chains = n_chains;
   sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
