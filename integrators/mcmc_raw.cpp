@@ -3,10 +3,10 @@
 namespace dp::integrators {
 
 namespace {
-constexpr const char* kB = "mcmc.b";
-constexpr const char* kBSamples = "mcmc.b_samples";
-constexpr const char* kFactorSamples = "mcmc.factor_samples";
-constexpr const char* kMutations = "mcmc.mutations";
+// Six double slots: pixel 0 = (b.sum, b.n, mutations), pixel 1 = (factor.sum, factor.n,
+// 0) -- of a second buffer on a 1-pixel image. Counts as doubles: exact below 2^53.
+constexpr const char* kNorm = "mcmc.norm";
+constexpr const char* kNorm1 = "mcmc.norm.1";
 }  // namespace
 
 double McmcNorm::value() const {
@@ -21,27 +21,28 @@ double McmcNorm::scale(int64_t pixels) const {
 
 void McmcNorm::write(core::RawImage& raw) const {
   const size_t n = raw.pixels();
-  std::vector<Rgbd> sums(n, Rgbd::Zero());
-  sums[0] = Rgbd(b.sum, factor.sum, 0.0);
-  raw.sums[kB] = std::move(sums);
-  auto scalar = [&](int64_t v) {
-    std::vector<int64_t> c(n, 0);
-    c[0] = v;
-    return c;
-  };
-  raw.counts[kBSamples] = scalar(b.n);
-  raw.counts[kFactorSamples] = scalar(factor.n);
-  raw.counts[kMutations] = scalar(mutations);
+  std::vector<Rgbd> slots(n, Rgbd::Zero());
+  slots[0] = Rgbd(b.sum, double(b.n), double(mutations));
+  const Rgbd second(factor.sum, double(factor.n), 0.0);
+  if (n >= 2) {
+    slots[1] = second;
+  } else {
+    std::vector<Rgbd> more(n, Rgbd::Zero());
+    more[0] = second;
+    raw.sums[kNorm1] = std::move(more);
+  }
+  raw.sums[kNorm] = std::move(slots);
 }
 
 McmcNorm McmcNorm::read(const core::RawImage& raw) {
+  const std::vector<Rgbd>& slots = raw.sum(kNorm);
+  const Rgbd first = slots[0], second = slots.size() >= 2 ? slots[1] : raw.sum(kNorm1)[0];
   McmcNorm m;
-  const Rgbd s = raw.sum(kB)[0];
-  m.b.sum = s[0];
-  m.factor.sum = s[1];
-  m.b.n = raw.count(kBSamples)[0];
-  m.factor.n = raw.count(kFactorSamples)[0];
-  m.mutations = raw.count(kMutations)[0];
+  m.b.sum = first[0];
+  m.b.n = int64_t(first[1]);
+  m.mutations = int64_t(first[2]);
+  m.factor.sum = second[0];
+  m.factor.n = int64_t(second[1]);
   return m;
 }
 

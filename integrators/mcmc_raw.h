@@ -11,9 +11,9 @@
 // so the summed shares hold each sample once: the whole render's b, whatever the
 // number of parts, and still an unbiased b when a part is missing. The mutation count
 // is every part's own (under --time the parts reach different counts; the scale is
-// right for their sum). Scalars live in pixel 0 of buffers of their own (RawImage
-// holds per-pixel buffers only): sum "mcmc.b" = (b.sum, factor.sum, 0), counts
-// "mcmc.b_samples", "mcmc.factor_samples", "mcmc.mutations".
+// right for their sum). The scalars live in one sum buffer "mcmc.norm" (RawImage holds
+// per-pixel buffers only): pixel 0 = (b.sum, b.n, mutations), pixel 1 = (factor.sum,
+// factor.n, 0), the counts as doubles (exact below 2^53); 24 bytes per pixel.
 #pragma once
 
 #include <cstdint>
