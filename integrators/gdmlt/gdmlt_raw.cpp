@@ -39,9 +39,12 @@ std::vector<T> stored(const core::RawImage& raw, const std::string& name, bool s
   const std::vector<int64_t>& n = raw.count("features.n");
   std::vector<T> out(sum.size());
   for (size_t i = 0; i < sum.size(); ++i) {
-    if (n[i] != 1 && (strict || n[i] > 1))
+    if (n[i] == 0 && strict)
+      throw ValueError("gdmlt: the feature buffers of pixel " + std::to_string(i) +
+                       " are in a missing part: the adaptive kernel needs every part (merge them all)");
+    if (n[i] > 1)
       throw ValueError("gdmlt: pixel " + std::to_string(i) + " of buffer '" + name + "' is stored " +
-                       std::to_string(n[i]) + " times, not once (merge every part of the render exactly once)");
+                       std::to_string(n[i]) + " times, not once");
     if constexpr (std::is_same_v<T, float>)
       out[i] = float(sum[i][0]);
     else

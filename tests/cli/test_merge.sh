@@ -125,6 +125,9 @@ check "gdmlt: merged output has the reconstruction and the adaptive kernel's lay
 "$bin" merge "$tmp/mlt/p1-3.exr" "$tmp/mlt/p3-3.exr" --quiet --out "$tmp/mlt/two.exr" 2>/dev/null
 check "mlt: merge of 2 of 3 parts is marked partial, with its parts' mutations" \
   json_check "$tmp/mlt/two.json" "j['partial'] and 2 <= j['spp_min'] < 4"
+check "gdmlt (adaptive kernel): a merge lacking a part is one line naming the missing feature buffers" \
+  fails_with "p1-3.exr: gdmlt: the feature buffers of pixel 1 are in a missing part" \
+  "$bin" merge "$tmp/gdmlt/p1-3.exr" "$tmp/gdmlt/p3-3.exr" --quiet --out "$tmp/x.exr"
 
 # --time parts of the MCMC integrators reach different mutation counts; the image scale
 # b W H / (summed mutations) must hold for any mix. No single render takes those samples,
