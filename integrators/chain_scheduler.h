@@ -68,7 +68,8 @@ inline int resolve_chains(int setting, const RenderOptions& options) {
   return options.parts > 1 ? 16 * options.parts : 4 * resolve_threads(options);
 }
 // Whether chain c is one of this part's (ChainSchedule::part/parts).
-inline bool owns_chain(const ChainSchedule& sc, int c) { return sc.parts <= 1 || c % sc.parts == sc.part; }
+inline bool owns_chain(int c, int part, int parts) { return parts <= 1 || c % parts == part; }
+inline bool owns_chain(const ChainSchedule& sc, int c) { return owns_chain(c, sc.part, sc.parts); }
 // Mutations chain c runs in --spp mode (total / chains, the first total % chains one more).
 inline int64_t chain_quota(const ChainSchedule& sc, int c) {
   return sc.total / sc.chains + (c < sc.total % sc.chains ? 1 : 0);

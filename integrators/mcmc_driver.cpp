@@ -20,9 +20,13 @@ McmcDriver::McmcDriver(const mcmc::TargetFactory& make, const McmcConfig& config
   m_b = m_boot->b();
   // f == 0 everywhere: a black image, no chain can start.
   const int chains = m_boot->select(0.5) < 0 ? 0 : resolve_chains(m_cfg.chains, options);
+  // Another part's chains never step here: they share one idle target (never evaluated,
+  // its counters stay 0) instead of a target each.
   for (int c = 0; c < chains; ++c) {
-    m_targets.push_back(make());
-    m_chains.emplace_back(*m_targets.back(), m_cfg.chain, options.seed, uint64_t(c));
+    const bool own = owns_chain(c, options.part, options.parts);
+    if (!own && !m_idle) m_idle = make();
+    m_targets.push_back(own ? make() : nullptr);
+    m_chains.emplace_back(own ? *m_targets.back() : *m_idle, m_cfg.chain, options.seed, uint64_t(c));
   }
   m_counters.resize(size_t(chains));
   m_large.assign(size_t(chains), 0);

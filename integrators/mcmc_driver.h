@@ -57,7 +57,8 @@ class McmcDriver {
   const McmcNorm& norm() const { return m_norm; }  // this part's share (after run)
   double scale() const;                      // b W H / mutations
   int chains() const { return int(m_chains.size()); }
-  mcmc::Target& target(int c) { return *m_targets[size_t(c)]; }
+  // Chain c's target (another part's chain: an idle target shared by those chains).
+  mcmc::Target& target(int c) { return m_targets[size_t(c)] ? *m_targets[size_t(c)] : *m_idle; }
   const ChainRunResult& result() const { return m_run; }
   // Counters "<prefix>.*" and info facts shared by the MCMC integrators.
   void report(RenderResult& result, const std::string& prefix) const;
@@ -68,7 +69,8 @@ class McmcDriver {
   int m_width, m_height;
   std::unique_ptr<mcmc::Bootstrap> m_boot;
   double m_bootstrap_seconds = 0;
-  std::vector<std::unique_ptr<mcmc::Target>> m_targets;
+  std::vector<std::unique_ptr<mcmc::Target>> m_targets;  // null for another part's chain
+  std::unique_ptr<mcmc::Target> m_idle;
   std::vector<mcmc::Chain> m_chains;  // safe to move (mcmc/chain.h)
   std::vector<mcmc::ChainCounters> m_counters;
   std::vector<int64_t> m_large;

@@ -79,9 +79,13 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
       const auto it = std::upper_bound(cdf.begin(), cdf.end(), pick.uniform_double() * total);
       size_t k = size_t(std::min<std::ptrdiff_t>(it - cdf.begin(), std::ptrdiff_t(cdf.size()) - 1));
       while (k > 0 && !(cand[k].factor > 0.0)) --k;  // round-off past the last usable one
+      if (!owns_chain(sc, c)) {  // another part's chain never steps here: no target
+        chains.emplace_back(mutators, options.seed, uint64_t(c));
+        continue;
+      }
       chains.emplace_back(mutators, options.seed, uint64_t(c),
                           std::make_unique<mcmc::PathGradientFactor>(scene, kernel, po));
-      if (owns_chain(sc, c)) chains.back().start(cand[k].x);  // another part's chain never steps here
+      chains.back().start(cand[k].x);
     }
   const double seed_seconds = timer.seconds();
 
@@ -132,6 +136,7 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
   int64_t lt_only = 0;
   for (size_t c = 0; c < chains.size(); ++c) {  // chain order: deterministic
     sum.merge(counters[c]);
+    if (!chains[c].factor()) continue;  // another part's chain
     const auto& f = static_cast<const mcmc::PathGradientFactor&>(*chains[c].factor());
     out.target.merge(f.counters());
     lt_only += f.light_tracing_only();
