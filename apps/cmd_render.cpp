@@ -100,7 +100,7 @@ void run_render(const RenderArgs& a, const MpiWorld* world) {
   if (a.time < 0) throw ValueError("--time must be positive", "command line");
   if (world) {
     if (!integrator->supports_raw())
-      throw ValueError("integrator " + name + " does not support --mpi yet (path, gpt, bdpt, gbdpt, vcm, gpm, gvcm)", "command line");
+      throw ValueError("integrator " + name + " does not support --mpi yet (path, volpath, gpt, bdpt, gbdpt, vcm, gpm, gvcm, mlt, memlt, gdmlt)", "command line");
     opt.raw = true;
     opt.part = world->rank;
     opt.parts = world->size;
@@ -186,13 +186,13 @@ void register_render(CLI::App& app) {
   cmd->add_option("--out", args->out, "output EXR (also writes .png and .json beside it)");
   cmd->add_flag("--quiet", args->quiet, "no progress bar or info messages");
   auto* partial = cmd->add_flag("--partial", args->partial,
-                                "write raw sums and sample counts for `deltapath merge` (path, volpath, vpm, bre, gpt, bdpt, gbdpt, vcm, gpm, gvcm)");
+                                "write raw sums and sample counts for `deltapath merge` (path, volpath, vpm, bre, gpt, bdpt, gbdpt, vcm, gpm, gvcm, mlt, memlt, gdmlt)");
   cmd->add_option("--part", args->part, "render share K of N (1-based) for `merge`; needs --partial")
       ->check(part_spec())
       ->needs(partial);
   cmd->add_flag("--mpi", args->mpi,
                 "split the render over the MPI ranks (implied when started by mpirun with > 1 rank); rank 0 "
-                "writes the outputs (path, gpt, bdpt, gbdpt, vcm, gpm, gvcm)")
+                "writes the outputs (every integrator with --partial)")
       ->excludes(partial);
   cmd->callback([args] {
     if (!args->mpi && !under_mpirun()) return run_render(*args, nullptr);

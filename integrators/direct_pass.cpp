@@ -50,11 +50,28 @@ void DirectPass::render(int spp) {
   m_partial |= sched.partial;
 }
 
-core::Image DirectPass::image() const {
-  core::Image img(m_w, m_h);
-  for (size_t i = 0; i < m_sum.size(); ++i)
-    if (m_count[i] > 0) img(int(i % size_t(m_w)), int(i / size_t(m_w))) = (m_sum[i] / double(m_count[i])).cast<float>();
+namespace {
+core::Image mean_image(const std::vector<Rgbd>& sum, const std::vector<int64_t>& count, int w, int h) {
+  core::Image img(w, h);
+  for (size_t i = 0; i < sum.size(); ++i)
+    if (count[i] > 0) img[i] = (sum[i] / double(count[i])).cast<float>();
   return img;
+}
+}  // namespace
+
+void DirectPass::catch_up(int64_t spp) {
+  while (m_spp < spp) render(1);
+}
+
+core::Image DirectPass::image() const { return mean_image(m_sum, m_count, m_w, m_h); }
+
+void DirectPass::write(core::RawImage& raw) const {
+  raw.sums["direct"] = m_sum;
+  raw.counts["direct"] = m_count;
+}
+
+core::Image DirectPass::image(const core::RawImage& raw) {
+  return mean_image(raw.sum("direct"), raw.count("direct"), raw.width, raw.height);
 }
 
 }  // namespace dp::integrators

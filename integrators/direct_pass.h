@@ -4,11 +4,16 @@
 // illumination ... separately"; path-space MLT: Mitsuba 0.6's directSamples).
 // Rendered in passes that may be interleaved with the chains' rounds, so an interrupted
 // render has both parts; each pass has its own random streams (seed, pass index).
+// Parts (RenderOptions::part/parts, issue 17): each pass is a tile render split into the
+// parts' (pass, tile) work units (tile_scheduler.h); parts that make the same sequence
+// of render() calls hold disjoint samples whose raw sums and counts ("direct") add up to
+// the single render's.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "core/raw_image.h"
 #include "integrators/integrator.h"
 #include "integrators/path/path_tracer.h"
 
@@ -20,7 +25,13 @@ class DirectPass {
   DirectPass(const scene::Scene& scene, const PathSettings& settings, const RenderOptions& options, std::string label);
   // Adds `spp` samples per pixel (fewer in tiles an interruption skipped).
   void render(int spp);
+  // Renders 1-spp passes until `spp` samples per pixel (the passes an interleaved single
+  // render made after rounds this part did not need: the same calls, the same streams).
+  void catch_up(int64_t spp);
   core::Image image() const;
+  // Sum "direct" and count "direct" into `raw`; the image of such buffers.
+  void write(core::RawImage& raw) const;
+  static core::Image image(const core::RawImage& raw);
   int64_t spp_done() const { return m_spp; }
   int64_t nan_dropped() const { return m_dropped; }
   bool partial() const { return m_partial; }

@@ -19,10 +19,14 @@ McmcDriver::McmcDriver(const mcmc::TargetFactory& make, const McmcConfig& config
   m_bootstrap_seconds = timer.seconds();
   m_b = m_boot->b();
   // f == 0 everywhere: a black image, no chain can start.
-  const int chains = m_boot->select(0.5) < 0 ? 0 : (m_cfg.chains > 0 ? m_cfg.chains : 4 * threads);
+  const int chains = m_boot->select(0.5) < 0 ? 0 : resolve_chains(m_cfg.chains, options);
+  // Another part's chains never step here: they share one idle target (never evaluated,
+  // its counters stay 0) instead of a target each.
   for (int c = 0; c < chains; ++c) {
-    m_targets.push_back(make());
-    m_chains.emplace_back(*m_targets.back(), m_cfg.chain, options.seed, uint64_t(c));
+    const bool own = owns_chain(c, options.part, options.parts);
+    if (!own && !m_idle) m_idle = make();
+    m_targets.push_back(own ? make() : nullptr);
+    m_chains.emplace_back(own ? *m_targets.back() : *m_idle, m_cfg.chain, options.seed, uint64_t(c));
   }
   m_counters.resize(size_t(chains));
   m_large.assign(size_t(chains), 0);
@@ -37,6 +41,8 @@ const ChainRunResult& McmcDriver::run(const RenderOptions& options, const std::s
   sc.round = std::max<int64_t>(1, m_pixels / std::max(1, sc.chains));  // ~1 mutation per pixel per round
   sc.layers = m_cfg.layers;
   sc.pixels = m_pixels;
+  sc.part = options.part;
+  sc.parts = options.parts;
   sc.after_round = after_round;
   std::vector<char> started(size_t(sc.chains), 0);
   m_run = run_chains(sc, options, label, [&](int c, int64_t n, SplatList& out, int) {
@@ -62,18 +68,20 @@ const ChainRunResult& McmcDriver::run(const RenderOptions& options, const std::s
   });
   // b = E[f] over uniform primary samples: the bootstrap's and every large step's
   // proposal are such samples, so their mean is unbiased and its error falls with the
-  // render (Kelemen et al. 2002).
-  int64_t large = 0;
-  double large_f = 0;
-  for (int c = 0; c < sc.chains; ++c) large += m_large[size_t(c)], large_f += m_large_f[size_t(c)];  // chain order
-  const double n = double(m_boot->samples());
-  m_b = m_cfg.large_step_b ? (m_boot->b() * n + large_f) / (n + double(large)) : m_boot->b();
+  // render (Kelemen et al. 2002). This part's share: its bootstrap samples, its chains'
+  // large steps (mcmc_raw.h).
+  m_share = m_boot->share(options.part, options.parts);
+  m_norm = McmcNorm{};
+  m_norm.b.sum = m_share.sum;
+  m_norm.b.n = m_share.n;
+  if (m_cfg.large_step_b)
+    for (int c = 0; c < sc.chains; ++c) m_norm.b.n += m_large[size_t(c)], m_norm.b.sum += m_large_f[size_t(c)];  // chain order
+  m_norm.mutations = m_run.total_mutations;
+  m_b = m_norm.value();
   return m_run;
 }
 
-double McmcDriver::scale() const {
-  return m_run.total_mutations > 0 ? m_b * double(m_pixels) / double(m_run.total_mutations) : 0.0;
-}
+double McmcDriver::scale() const { return m_norm.scale(m_pixels); }
 
 void McmcDriver::report(RenderResult& result, const std::string& prefix) const {
   mcmc::ChainCounters sum;
@@ -85,9 +93,10 @@ void McmcDriver::report(RenderResult& result, const std::string& prefix) const {
   result.stats.add(prefix + ".accepted_large", sum.accepted_large);
   result.stats.add(prefix + ".accepted_small", sum.accepted_small);
   result.stats.add(prefix + ".zero_proposals", sum.zero);
-  result.stats.add(prefix + ".nan_dropped", sum.invalid + m_boot->invalid());
-  result.stats.add(prefix + ".bootstrap_samples", m_boot->samples());
-  result.min_spp = result.max_spp = mutations / m_pixels;  // mutations per pixel (on average)
+  // The bootstrap's share: the parts' counters sum to the whole render's.
+  result.stats.add(prefix + ".nan_dropped", sum.invalid + m_share.invalid);
+  result.stats.add(prefix + ".bootstrap_samples", m_share.n);
+  fill_part_counts(mutations, m_pixels, result);  // mutations per pixel (on average)
   result.info["bootstrap_b"] = m_boot->b();
   result.info["b"] = m_b;
   result.info["bootstrap_seconds"] = m_bootstrap_seconds;

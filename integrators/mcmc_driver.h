@@ -11,6 +11,10 @@
 //     (b, bootstrap time, chains, rounds) for the JSON sidecar.
 // Image value of a buffer = scale() * splats, scale = b W H / mutations (the raster
 // density on the image is 1 / (W H)).
+// Parts (RenderOptions::part/parts, issue 17): every part runs the whole bootstrap (same
+// seed: same b, same start states) and only its chains (chain_scheduler.h); norm() holds
+// this part's share of b's samples and its mutations (mcmc_raw.h), so the parts' norms
+// summed give the single render's b and scale.
 #pragma once
 
 #include <functional>
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "integrators/chain_scheduler.h"
+#include "integrators/mcmc_raw.h"
 #include "mcmc/bootstrap.h"
 #include "mcmc/chain.h"
 
@@ -48,10 +53,12 @@ class McmcDriver {
   const ChainRunResult& run(const RenderOptions& options, const std::string& label, const Splat& splat,
                             const AfterStep& after = {}, const AfterRound& after_round = {});
 
-  double b() const { return m_b; }          // refined normalisation (after run)
+  double b() const { return m_b; }          // refined normalisation of this part's samples (after run)
+  const McmcNorm& norm() const { return m_norm; }  // this part's share (after run)
   double scale() const;                      // b W H / mutations
   int chains() const { return int(m_chains.size()); }
-  mcmc::Target& target(int c) { return *m_targets[size_t(c)]; }
+  // Chain c's target (another part's chain: an idle target shared by those chains).
+  mcmc::Target& target(int c) { return m_targets[size_t(c)] ? *m_targets[size_t(c)] : *m_idle; }
   const ChainRunResult& result() const { return m_run; }
   // Counters "<prefix>.*" and info facts shared by the MCMC integrators.
   void report(RenderResult& result, const std::string& prefix) const;
@@ -62,13 +69,16 @@ class McmcDriver {
   int m_width, m_height;
   std::unique_ptr<mcmc::Bootstrap> m_boot;
   double m_bootstrap_seconds = 0;
-  std::vector<std::unique_ptr<mcmc::Target>> m_targets;
+  std::vector<std::unique_ptr<mcmc::Target>> m_targets;  // null for another part's chain
+  std::unique_ptr<mcmc::Target> m_idle;
   std::vector<mcmc::Chain> m_chains;  // safe to move (mcmc/chain.h)
   std::vector<mcmc::ChainCounters> m_counters;
   std::vector<int64_t> m_large;
   std::vector<double> m_large_f;
   ChainRunResult m_run;
   double m_b = 0;
+  McmcNorm m_norm;
+  mcmc::SampleShare m_share;  // this part's bootstrap samples
 };
 
 }  // namespace dp::integrators

@@ -15,6 +15,7 @@ core::Rng block_rng(uint64_t seed, int64_t block) {
 
 Bootstrap::Bootstrap(const TargetFactory& make, int64_t n, uint64_t seed, int threads) : m_seed(seed) {
   m_f.assign(size_t(std::max<int64_t>(n, 0)), 0.0);
+  m_bad.assign(m_f.size(), 0);
   const int64_t blocks = (n + kBlock - 1) / kBlock;
   std::atomic<int64_t> invalid{0};
   core::parallel_for(blocks, threads, [&](int64_t block, int) {
@@ -27,6 +28,7 @@ Bootstrap::Bootstrap(const TargetFactory& make, int64_t n, uint64_t seed, int th
       const TargetValue v = target->evaluate(stream);
       if (!v.valid()) {
         invalid.fetch_add(1);
+        m_bad[size_t(i)] = 1;
         continue;
       }
       m_f[size_t(i)] = std::max(0.0, v.f);
@@ -37,6 +39,17 @@ Bootstrap::Bootstrap(const TargetFactory& make, int64_t n, uint64_t seed, int th
   double sum = 0;
   for (size_t i = 0; i < m_f.size(); ++i) m_cdf[i] = sum += m_f[i];  // in index order: deterministic
   m_b = n > 0 ? sum / double(n) : 0.0;
+}
+
+SampleShare Bootstrap::share(int part, int parts) const {
+  SampleShare s;
+  for (size_t i = 0; i < m_f.size(); ++i)
+    if (owns_sample(int64_t(i), kBlock, part, parts)) {
+      s.sum += m_f[i];
+      ++s.n;
+      s.invalid += m_bad[i];
+    }
+  return s;
 }
 
 int64_t Bootstrap::select(double u) const {

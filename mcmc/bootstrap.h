@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mcmc/sample_share.h"
 #include "mcmc/target.h"
 
 namespace dp::mcmc {
@@ -25,6 +26,9 @@ class Bootstrap {
   double b() const { return m_b; }           // mean f (invalid samples count as 0)
   int64_t samples() const { return int64_t(m_f.size()); }
   int64_t invalid() const { return m_invalid; }  // non-finite samples (dropped)
+  // The samples of part `part` of `parts` (sample_share.h; blocks of kBlock), summed in
+  // index order: share(0, 1) is every sample, its sum / n is b() exactly.
+  SampleShare share(int part, int parts) const;
   // Index of the sample chosen with probability f_i / sum f for u in [0, 1); -1 if all f are 0.
   int64_t select(double u) const;
   // The primary sample coordinates of sample i (re-evaluated with `target`).
@@ -33,6 +37,7 @@ class Bootstrap {
  private:
   uint64_t m_seed;
   std::vector<double> m_f, m_cdf;
+  std::vector<char> m_bad;  // per sample: non-finite (dropped)
   double m_b = 0;
   int64_t m_invalid = 0;
 };

@@ -51,8 +51,8 @@ void bdpt_sample(const scene::Scene& scene, const PathSeedOptions& opt, int64_t 
 PathSeeder::PathSeeder(const scene::Scene& scene, const PathSeedOptions& options) : m_scene(scene), m_opt(options) {
   const int64_t n = std::max<int64_t>(options.samples, 0);
   m_sum.assign(size_t(n), 0.0);
+  m_bad.assign(size_t(n), 0);
   std::atomic<int64_t> invalid{0};
-  constexpr int64_t kBlock = 256;
   core::parallel_for((n + kBlock - 1) / kBlock, options.threads, [&](int64_t block, int) {
     Subpaths sp;
     for (int64_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
@@ -64,6 +64,7 @@ PathSeeder::PathSeeder(const scene::Scene& scene, const PathSeedOptions& options
       });
       if (!finite) {
         invalid.fetch_add(1);
+        m_bad[size_t(i)] = 1;
         sum = 0.0;
       }
       m_sum[size_t(i)] = sum;
@@ -74,6 +75,17 @@ PathSeeder::PathSeeder(const scene::Scene& scene, const PathSeedOptions& options
   double total = 0.0;
   for (size_t i = 0; i < m_sum.size(); ++i) m_cdf[i] = total += m_sum[i];  // index order: deterministic
   m_b = n > 0 ? total / double(n) : 0.0;
+}
+
+SampleShare PathSeeder::share(int part, int parts) const {
+  SampleShare s;
+  for (size_t i = 0; i < m_sum.size(); ++i)
+    if (owns_sample(int64_t(i), kBlock, part, parts)) {
+      s.sum += m_sum[i];
+      ++s.n;
+      s.invalid += m_bad[i];
+    }
+  return s;
 }
 
 bool PathSeeder::select(double u, PathState& out, PathSides& sides) const {

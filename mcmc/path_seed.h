@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mcmc/path_state.h"
+#include "mcmc/sample_share.h"
 
 namespace dp::mcmc {
 
@@ -33,6 +34,10 @@ class PathSeeder {
   double b() const { return m_b; }
   int64_t samples() const { return int64_t(m_sum.size()); }
   int64_t invalid() const { return m_invalid; }  // samples with a non-finite value (dropped)
+  // The samples of part `part` of `parts` (sample_share.h, blocks of kBlock), in index
+  // order: share(0, 1) is every sample, its sum / n is b() exactly.
+  SampleShare share(int part, int parts) const;
+  static constexpr int64_t kBlock = 256;
   // The start path for u in [0, 1): a sample chosen with probability proportional to its
   // summed lum(w C), then one of its strategies with probability proportional to its
   // own (the residual of u). False if every sample is zero or the path does not evaluate.
@@ -42,6 +47,7 @@ class PathSeeder {
   const scene::Scene& m_scene;
   PathSeedOptions m_opt;
   std::vector<double> m_sum, m_cdf;  // per sample: sum_st lum(w_st C_st), and its running sum
+  std::vector<char> m_bad;           // per sample: non-finite (dropped)
   double m_b = 0;
   int64_t m_invalid = 0;
 };

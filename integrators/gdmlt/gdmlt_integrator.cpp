@@ -1,7 +1,6 @@
 #include "integrators/gdmlt/gdmlt_integrator.h"
 
 #include <algorithm>
-#include <type_traits>
 
 #include "core/rng.h"
 #include "core/timer.h"
@@ -10,6 +9,7 @@
 #include "gradients/symmetric_gradient.h"
 #include "integrators/direct_pass.h"
 #include "integrators/gdmlt/gdmlt_path.h"
+#include "integrators/gdmlt/gdmlt_raw.h"
 #include "integrators/gradient_output.h"
 #include "integrators/mcmc_driver.h"
 #include "integrators/tile_scheduler.h"
@@ -24,23 +24,11 @@ namespace dp::integrators {
 namespace {
 constexpr int kPrimal = kGdmltPrimal, kDensity = kGdmltDensity, kRows = kGdmltRows;  // gdmlt_path.h
 
-// A feature buffer (kernels_adaptive/features.h, values in [0, 1]) as an image layer.
-template <typename T>
-core::Image feature_image(const std::vector<T>& v, int w, int h) {
-  core::Image img(w, h);
-  for (size_t i = 0; i < v.size(); ++i) {
-    if constexpr (std::is_same_v<T, float>)
-      img[i] = Rgb::Constant(v[i]);
-    else
-      img[i] = Rgb(float(v[i][0]), float(v[i][1]), float(v[i][2]));
-  }
-  return img;
-}
 // The primary-sample-space chains (McmcDriver over mcmc::GradientTarget).
 void run_pss_chains(const scene::Scene& scene, const GdmltSettings& st, const RenderOptions& options,
                     const RenderOptions& chain_opt, const gradients::ShiftChoice& choice,
                     const kernels_adaptive::PairKernel& kernel, int layers, DirectPass& direct, RenderResult& result,
-                    ChainRunResult& run, double& scale, mcmc::GradientTargetCounters& target_sum) {
+                    ChainRunResult& run, McmcNorm& norm, mcmc::GradientTargetCounters& target_sum) {
   core::Timer timer;
   const int w = scene.camera().width(), h = scene.camera().height();
   const int64_t pixels = int64_t(w) * int64_t(h);
@@ -80,10 +68,17 @@ void run_pss_chains(const scene::Scene& scene, const GdmltSettings& st, const Re
       });
   for (int c = 0; c < driver.chains(); ++c)  // in chain order: deterministic
     target_sum.merge(static_cast<mcmc::GradientTarget&>(driver.target(c)).counters());
-  scale = driver.scale();
+  norm = driver.norm();
   driver.report(result, "gdmlt");
 }
 }  // namespace
+
+RenderResult GdmltIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  RenderResult result;
+  add_gdmlt_layers(raw, options, m_settings, result);
+  result.info["settings"] = m_json;
+  return result;
+}
 
 RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
   core::Timer timer;
@@ -103,8 +98,8 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   direct.render(m_settings.direct_spp > 0 ? m_settings.direct_spp : 1);
 
   // The pair kernel: the 4-neighbour forward differences, or the structure-adaptive pairs
-  // from a feature pass (Manzi 2014, Sec. 3.5; only then is the feature pass run).
-  kernels_adaptive::PairKernel kernel;
+  // from a feature pass (Manzi 2014, Sec. 3.5; only then is the feature pass run). Every
+  // part runs the same feature pass (same seed), so all parts use one kernel.
   kernels_adaptive::Features features;
   double feature_seconds = 0;
   if (m_settings.kernel == "adaptive") {
@@ -112,13 +107,9 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
     features = kernels_adaptive::render_features(scene, m_settings.feature_spp,
                                                  core::mix64(options.seed ^ 0xFEA7'0000'0000'0001ull),
                                                  resolve_threads(options));
-    kernel = kernels_adaptive::adaptive_kernel(features, m_settings.affinity);
-    if (m_settings.fault_symmetric_as_one)  // tests' negative control only
-      for (auto& e : kernel.entries) e.weight = e.weight == 2.0f ? 1.0f : e.weight;
     feature_seconds = ft.seconds();
-  } else {
-    kernel = kernels_adaptive::standard_kernel(w, h);
   }
+  const kernels_adaptive::PairKernel kernel = gdmlt_kernel(m_settings, features, w, h);
   const int64_t rows = int64_t(kernel.rows.size());
   const int row_buffers = int((rows + pixels - 1) / pixels);
 
@@ -147,79 +138,51 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   RenderOptions chain_opt = options;
   if (options.time_budget > 0) chain_opt.time_budget = std::max(1e-3, options.time_budget - timer.seconds());
   ChainRunResult run;
-  double scale = 0;
+  McmcNorm norm;
   mcmc::GradientTargetCounters target_sum;
   if (path_space) {
     GdmltChains chains = run_gdmlt_path(scene, chain_opt, m_settings, kernel, layers, direct, result);
     run = std::move(chains.run);
-    scale = chains.scale;
+    norm = chains.norm;
     target_sum = chains.target;
   } else {
-    run_pss_chains(scene, m_settings, options, chain_opt, choice, kernel, layers, direct, result, run, scale, target_sum);
+    run_pss_chains(scene, m_settings, options, chain_opt, choice, kernel, layers, direct, result, run, norm, target_sum);
   }
-  auto image_of = [&](int layer, double k) {
-    core::Image img(w, h);
-    const std::vector<Rgbd>& sum = run.sums[size_t(layer)];
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) img(x, y) = (sum[size_t(y) * size_t(w) + size_t(x)] * k).cast<float>();
-    return img;
-  };
-  std::vector<Rgb> row_values(size_t(rows), Rgb::Zero());
-  for (int64_t r = 0; r < rows; ++r)
-    row_values[size_t(r)] = (run.sums[size_t(kRows + r / pixels)][size_t(r % pixels)] * scale).cast<float>();
-  // Gradient energy (where the sampled gradients put their magnitude; the paper's Fig. 8
-  // insets): per pixel, half the summed luminance magnitude of the rows touching it.
-  core::Image energy(w, h);
-  for (int64_t r = 0; r < rows; ++r) {
-    const float e = 0.5f * float(gradients::magnitude(row_values[size_t(r)].cast<double>()));
-    const auto& pr = kernel.rows[size_t(r)];
-    energy[size_t(pr.i)] += Rgb::Constant(e);
-    energy[size_t(pr.j)] += Rgb::Constant(e);
+  // A part whose chains needed fewer rounds than the whole render's makes the direct
+  // passes the single render made after those rounds (--spp; a --time part keeps its own).
+  if (m_settings.direct_spp == 0 && options.time_budget <= 0 && !run.interrupted) {
+    ChainSchedule whole;
+    whole.chains = int(run.mutations.size());
+    whole.total = int64_t(std::max(1, options.spp)) * pixels;
+    whole.round = std::max<int64_t>(1, pixels / std::max(1, whole.chains));
+    direct.catch_up(whole_rounds(whole));
   }
-  // Screened Poisson reconstruction of the indirect image (Manzi 2014, Eq. 8), then the
-  // direct pass added (Sec. 4).
-  if (m_settings.kernel == "standard") {
-    // Rows in forward-difference order (kernels_adaptive::standard_kernel): dx, then dy.
-    core::Image dx(w, h), dy(w, h);
-    size_t r = 0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x + 1 < w; ++x) dx(x, y) = row_values[r++];
-    for (int y = 0; y + 1 < h; ++y)
-      for (int x = 0; x < w; ++x) dy(x, y) = row_values[r++];
-    add_gradient_layers(image_of(kPrimal, scale), dx, dy, direct.image(), m_settings.alpha,
-                        m_settings.reconstruction, resolve_threads(options), result);
+
+  core::RawImage raw = gdmlt_raw(run, norm, features, ao.get(), m_settings, options, w, h);
+  direct.write(raw);
+  // The layers: the code a merge of parts runs (one Poisson reconstruction).
+  if (options.raw) {
+    result.raw = std::move(raw);
+    fill_part_counts(run.total_mutations, pixels, result);
   } else {
-    reconstruct::Problem problem =
-        kernels_adaptive::make_problem(kernel, image_of(kPrimal, scale), std::move(row_values), m_settings.alpha);
-    if (m_settings.symmetric_weight != 1.0)
-      problem.row_weights = reconstruct::reversed_pair_weights(problem.kernel, float(m_settings.symmetric_weight));
-    add_reconstruction_layers(problem, direct.image(), m_settings.reconstruction, resolve_threads(options), result);
-    reconstruct::append_pair_layers(reconstruct::encode_pair_layers(problem.kernel, problem.b), result.layers);
-    result.layers.push_back({"features.normal", feature_image(features.normal, w, h)});
-    result.layers.push_back({"features.albedo", feature_image(features.albedo, w, h)});
-    result.layers.push_back({"features.depth", feature_image(features.depth, w, h)});
-    result.info["feature_seconds"] = feature_seconds;
+    add_gdmlt_layers(raw, finish_options(options), m_settings, result);
   }
-  result.layers.push_back({"gradient_energy", std::move(energy)});
+  if (m_settings.kernel == "adaptive") result.info["feature_seconds"] = feature_seconds;
+  if (ao) result.info["ao_seconds"] = ao_seconds;
   int64_t symmetric = 0;
   for (const auto& e : kernel.entries) symmetric += e.weight == 2.0f;
-  if (ao) {
-    core::Image ao_img(w, h);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) ao_img(x, y) = Rgb::Constant(std::max(0.0f, ao->at_pixel(x, y)));  // miss: 0
-    result.layers.push_back({"ao", std::move(ao_img)});
-    result.info["ao_seconds"] = ao_seconds;
-  }
   // What ran and what was skipped: the passes' rays (0 = not run), INCMW's declarations.
-  result.stats.add("gdmlt.features.rays", m_settings.kernel == "adaptive" ? pixels * m_settings.feature_spp : 0);
-  result.stats.add("gdmlt.ao.rays", ao ? pixels * m_settings.ao_rays : 0);
+  // Every part runs the feature and AO passes and builds the kernel (same seed, same
+  // result): part 1 reports them, so the counters of the parts sum to the single render's.
+  const bool first = options.part == 0;
+  result.stats.add("gdmlt.features.rays",
+                   first && m_settings.kernel == "adaptive" ? pixels * m_settings.feature_spp : 0);
+  result.stats.add("gdmlt.ao.rays", first && ao ? pixels * m_settings.ao_rays : 0);
   result.stats.add("gdmlt.incmw.shifts", target_sum.incmw_shifts);
   result.stats.add("gdmlt.incmw.declared_vertices", target_sum.incmw_declared);
-  result.stats.add("gdmlt.kernel.rows", rows);
-  result.stats.add("gdmlt.kernel.symmetric_entries", symmetric);
-  result.stats.add("gdmlt.kernel.entries", int64_t(kernel.entries.size()));
-  const int64_t mutations = run.total_mutations;
-  result.layers.push_back({"density", image_of(kDensity, mutations > 0 ? double(pixels) / double(mutations) : 0.0)});
+  result.stats.add("gdmlt.kernel.rows", first ? rows : 0);
+  result.stats.add("gdmlt.kernel.symmetric_entries", first ? symmetric : 0);
+  result.stats.add("gdmlt.kernel.entries", first ? int64_t(kernel.entries.size()) : 0);
 
   // Concrete paths by case of Eqs. 4-6: T_1 used (weight w_1), T_0 by Eq. 6, Omega_bar.
   result.stats.add("gdmlt.paths.shifted_t1", target_sum.cases[size_t(gradients::GradientCase::shifted)]);

@@ -10,6 +10,8 @@
 //  4. screened Poisson reconstruction (L1 and L2) of the indirect image, plus the direct.
 // --spp N = N mutations per pixel on average; --time includes the direct light and the
 // bootstrap. Deterministic for a seed and chain count, whatever the thread count.
+// `--partial` / `--mpi` (issue 17): raw buffers and finish() in gdmlt_raw.h; finish()
+// runs the reconstruction once on the merged buffers (primal, rows, direct).
 #pragma once
 
 #include "integrators/gdmlt/gdmlt_settings.h"
@@ -25,6 +27,8 @@ class GdmltIntegrator final : public Integrator {
   GdmltIntegrator(const GdmltSettings& settings, core::Json json) : m_settings(settings), m_json(std::move(json)) {}
   std::string name() const override { return "gdmlt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GdmltSettings m_settings;

@@ -55,7 +55,7 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
   const std::vector<mcmc::WeightedMutator>& mutators = set.list();
 
   // b_g = b E[factor] and the start states (header), in parallel blocks, deterministic.
-  const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
+  const int n_chains = seeder.b() > 0.0 ? resolve_chains(settings.chains, options) : 0;
   const int n_cand = seeder.b() > 0.0 ? std::max(settings.candidates, 4 * n_chains) : 0;
   const uint64_t cand_seed = core::mix64(options.seed ^ 0x6D17'0000'0000'0001ull);
   std::vector<Candidate> cand(static_cast<size_t>(n_cand));
@@ -69,6 +69,9 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
   for (size_t k = 0; k < cand.size(); ++k) cdf[k] = total += cand[k].factor;
   const double b_g = n_cand > 0 ? seeder.b() * total / double(n_cand) : 0.0;
 
+  ChainSchedule sc;
+  sc.part = options.part;
+  sc.parts = options.parts;
   std::vector<mcmc::PathChain> chains;
   if (total > 0.0)
     for (int c = 0; c < n_chains; ++c) {
@@ -76,13 +79,16 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
       const auto it = std::upper_bound(cdf.begin(), cdf.end(), pick.uniform_double() * total);
       size_t k = size_t(std::min<std::ptrdiff_t>(it - cdf.begin(), std::ptrdiff_t(cdf.size()) - 1));
       while (k > 0 && !(cand[k].factor > 0.0)) --k;  // round-off past the last usable one
+      if (!owns_chain(sc, c)) {  // another part's chain never steps here: no target
+        chains.emplace_back(mutators, options.seed, uint64_t(c));
+        continue;
+      }
       chains.emplace_back(mutators, options.seed, uint64_t(c),
                           std::make_unique<mcmc::PathGradientFactor>(scene, kernel, po));
       chains.back().start(cand[k].x);
     }
   const double seed_seconds = timer.seconds();
 
-  ChainSchedule sc;
   if (settings.direct_spp == 0) sc.after_round = [&](int64_t rounds) { direct.render(int(rounds - direct.spp_done())); };
   sc.chains = int(chains.size());
   sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
@@ -112,33 +118,44 @@ GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& optio
     }
     counters[size_t(c)] = chain.counters();
   });
-  out.scale = out.run.total_mutations > 0 ? b_g * double(pixels) / double(out.run.total_mutations) : 0.0;
+  // b_g = b E[factor]: this part's shares of both means (mcmc_raw.h).
+  const mcmc::SampleShare share = seeder.share(options.part, options.parts);
+  out.norm.b.sum = share.sum;
+  out.norm.b.n = share.n;
+  int64_t own_cand = 0, unusable = 0;
+  for (int k = 0; k < n_cand; ++k)  // index order
+    if (mcmc::owns_sample(k, mcmc::PathSeeder::kBlock, options.part, options.parts)) {
+      out.norm.factor.sum += cand[size_t(k)].factor;
+      ++out.norm.factor.n;
+      ++own_cand;
+      unusable += !(cand[size_t(k)].factor > 0.0);
+    }
+  out.norm.mutations = out.run.total_mutations;
 
   mcmc::PathChainCounters sum;
-  int64_t lt_only = 0, unusable = 0;
+  int64_t lt_only = 0;
   for (size_t c = 0; c < chains.size(); ++c) {  // chain order: deterministic
     sum.merge(counters[c]);
+    if (!chains[c].factor()) continue;  // another part's chain
     const auto& f = static_cast<const mcmc::PathGradientFactor&>(*chains[c].factor());
     out.target.merge(f.counters());
     lt_only += f.light_tracing_only();
   }
-  for (const Candidate& k : cand) unusable += !(k.factor > 0.0);
   const int64_t invalid = report_path_chains(result, "gdmlt", mutators, sum);
   result.stats.add("gdmlt.mutations", out.run.total_mutations);
-  result.stats.add("gdmlt.nan_dropped", seeder.invalid() + invalid);
-  result.stats.add("gdmlt.bootstrap_samples", seeder.samples());
-  result.stats.add("gdmlt.path.seed_candidates", n_cand);
+  // Shares of the seeder's samples and of the candidates: parts' counters sum to the whole's.
+  result.stats.add("gdmlt.nan_dropped", share.invalid + invalid);
+  result.stats.add("gdmlt.bootstrap_samples", share.n);
+  result.stats.add("gdmlt.path.seed_candidates", own_cand);
   result.stats.add("gdmlt.path.seed_candidates_unusable", unusable);
   result.stats.add("gdmlt.path.light_tracing_only", lt_only);  // states in Omega_bar by construction
-  result.min_spp = result.max_spp = out.run.total_mutations / pixels;
   result.info["state_space"] = "path";
   result.info["bootstrap_b"] = seeder.b();
-  result.info["b"] = b_g;
+  result.info["b_g"] = b_g;
   result.info["bootstrap_seconds"] = seed_seconds;
   result.info["chain_seconds"] = out.run.seconds;
   result.info["chains"] = int(chains.size());
   result.info["rounds"] = out.run.rounds;
-  result.info["mutations_per_pixel"] = double(out.run.total_mutations) / double(pixels);
   return out;
 }
 

@@ -16,6 +16,7 @@
 
 #include "integrators/chain_scheduler.h"
 #include "integrators/direct_pass.h"
+#include "integrators/mcmc_raw.h"
 #include "integrators/gdmlt/gdmlt_settings.h"
 #include "kernels_adaptive/pair_kernel.h"
 #include "mcmc/gradient_target.h"
@@ -29,10 +30,13 @@ enum GdmltLayer { kGdmltPrimal = 0, kGdmltDensity = 1, kGdmltRows = 2 };
 
 struct GdmltChains {
   ChainRunResult run;
-  double scale = 0;                      // buffer value = scale * splats
+  McmcNorm norm;                         // buffer value = norm.scale(W H) * splats
   mcmc::GradientTargetCounters target;   // the target's cases and shifts, chain order
 };
 
+// Parts (issue 17): every part draws every candidate and the same start states (b_g
+// depends on the seed only); it runs chains c = part (mod parts) and its norm holds its
+// share of the seeder's samples (b) and of the candidates (factor), mcmc_raw.h.
 // Runs the chains (`options.time_budget` is theirs alone); `direct` catches up after
 // every round when settings.direct_spp = 0. Adds gdmlt.* counters and info to `result`.
 GdmltChains run_gdmlt_path(const scene::Scene& scene, const RenderOptions& options, const GdmltSettings& settings,

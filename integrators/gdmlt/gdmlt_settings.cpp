@@ -61,7 +61,7 @@ GdmltSettings GdmltSettings::read(Settings& s) {
   g.large_step_prob = s.get_double("large_step_prob", g.large_step_prob, "probability of a large step");
   g.bootstrap = s.get_int("bootstrap", int(g.bootstrap), "independent samples estimating b and seeding the chains");
   g.large_step_b = s.get_bool("large_step_b", g.large_step_b, "refine b with every large step's f");
-  g.chains = s.get_int("chains", g.chains, "independent Markov chains (0: 4 per thread)");
+  g.chains = s.get_int("chains", g.chains, "independent Markov chains (0: 4 per thread; 16 per part for --part/--mpi)");
   g.rr_depth = s.get_int("rr_depth", g.rr_depth, "Russian roulette only after this many path segments");
   g.nee = s.get_bool("nee", g.nee, "next-event estimation with power-heuristic MIS");
   g.direct_spp = s.get_int("direct_spp", g.direct_spp,

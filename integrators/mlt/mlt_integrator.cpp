@@ -4,6 +4,7 @@
 
 #include "core/timer.h"
 #include "integrators/mcmc_driver.h"
+#include "integrators/mcmc_raw.h"
 #include "integrators/mlt/mlt_path.h"
 #include "mcmc/path_target.h"
 
@@ -34,17 +35,35 @@ RenderResult MltIntegrator::render(const scene::Scene& scene, const RenderOption
     out.add(0, int64_t(py) * w + px, v.value.cast<double>() * (weight / v.f));
   });
 
-  RenderResult result;
-  const double scale = driver.scale();
-  core::Image img(w, h);
-  const std::vector<Rgbd>& sum = driver.result().sums[0];
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img(x, y) = (sum[size_t(y) * size_t(w) + size_t(x)] * scale).cast<float>();
-  result.layers.push_back({"", std::move(img)});
+  core::RawImage raw = empty_raw(w, h);
+  raw.sums["splat"] = driver.result().sums[0];
+  driver.norm().write(raw);
+  RenderResult result = options.raw ? RenderResult{} : finish(raw, finish_options(options));
+  if (options.raw) result.raw = std::move(raw);
   driver.report(result, "mlt");
+  if (!options.raw) fill_mcmc_counts(driver.norm(), int64_t(w) * h, finish_options(options), result);
   result.wall_seconds = timer.seconds();
   // Interrupted (Ctrl-C) is partial in both modes; a --time render that used its budget is not.
   result.partial = driver.result().partial;
+  result.info["settings"] = m_json;
+  return result;
+}
+
+RenderResult MltIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  if (m_settings.path_space) {
+    RenderResult result = finish_mlt_path(raw, options, m_settings);
+    result.info["settings"] = m_json;
+    return result;
+  }
+  const McmcNorm norm = McmcNorm::read(raw);
+  const int64_t pixels = int64_t(raw.width) * raw.height;
+  const double scale = norm.scale(pixels);
+  const std::vector<Rgbd>& sum = raw.sum("splat");
+  core::Image img(raw.width, raw.height);
+  for (size_t i = 0; i < sum.size(); ++i) img[i] = (sum[i] * scale).cast<float>();
+  RenderResult result;
+  result.layers.push_back({"", std::move(img)});
+  fill_mcmc_counts(norm, pixels, options, result);
   result.info["settings"] = m_json;
   return result;
 }

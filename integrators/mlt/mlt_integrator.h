@@ -7,6 +7,11 @@
 // mutations per pixel on average (N W H in total); --time runs rounds of mutations until
 // the wall-clock budget is used. Image: b / (mutations per pixel) * splats, with
 // expected-value splatting of the current and the proposed state (Veach 1997, 11.3.3).
+// `--partial` / `--mpi` (issue 17): part k of n runs chains c = k (mod n) of the same
+// chain set with the same streams; raw buffers "splat" and the normalisation of
+// integrators/mcmc_raw.h (plus the direct pass's "direct" in path space); finish() turns
+// them -- one render's or the sum of the parts' -- into the image, so a render's image is
+// always made by the code a merge runs.
 #pragma once
 
 #include "integrators/integrator.h"
@@ -22,6 +27,8 @@ class MltIntegrator final : public Integrator {
       : m_settings(settings), m_json(std::move(json)), m_name(std::move(name)) {}
   std::string name() const override { return m_name; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  bool supports_raw() const override { return m_settings.replay_chain < 0; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   MltSettings m_settings;

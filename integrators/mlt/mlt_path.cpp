@@ -6,6 +6,7 @@
 #include "core/timer.h"
 #include "integrators/chain_scheduler.h"
 #include "integrators/direct_pass.h"
+#include "integrators/mcmc_raw.h"
 #include "integrators/path_chains.h"
 #include "integrators/tile_scheduler.h"
 #include "mcmc/path_json.h"
@@ -59,7 +60,6 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();
   const int64_t pixels = int64_t(w) * h;
-  const int threads = resolve_threads(options);
 
   // Direct light (<= 2 segments) by the path tracer, the chains the rest (Mitsuba 0.6).
   const bool direct = settings.direct_spp >= 0 && settings.replay_chain < 0;
@@ -69,14 +69,22 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
 
   const PathMutatorSet set(scene, settings.path_mutations, so.min_depth, options.max_depth, settings.path_fault);
   const std::vector<mcmc::WeightedMutator>& mutators = set.list();
-  const int n_chains = seeder.b() > 0.0 ? (settings.chains > 0 ? settings.chains : 4 * threads) : 0;
+  const int n_chains = seeder.b() > 0.0 ? resolve_chains(settings.chains, options) : 0;
+  ChainSchedule sc;
+  sc.chains = n_chains;
+  sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
+  sc.round = std::max<int64_t>(1, pixels / std::max(1, sc.chains));
+  sc.pixels = pixels;
+  sc.part = options.part;
+  sc.parts = options.parts;
   std::vector<mcmc::PathChain> chains;
   int64_t seed_retries = 0;
   {
     mcmc::PathState x;
     for (int c = 0; c < n_chains; ++c) {
-      seed_retries += start_path(seeder, options.seed, c, name, x);
       chains.emplace_back(mutators, options.seed, uint64_t(c));
+      if (!owns_chain(sc, c)) continue;  // another part's (its start depends on c alone)
+      seed_retries += start_path(seeder, options.seed, c, name, x);
       chains.back().start(x);
     }
   }
@@ -91,15 +99,10 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     direct_pass->render(settings.direct_spp > 0 ? settings.direct_spp : 1);
   }
 
-  ChainSchedule sc;
   // Auto: after every round (about one mutation per pixel) the direct pass catches up to
   // as many samples per pixel as rounds, so an interrupted render has both parts.
   if (direct_pass && settings.direct_spp == 0)
     sc.after_round = [&](int64_t rounds) { direct_pass->render(int(rounds - direct_pass->spp_done())); };
-  sc.chains = n_chains;
-  sc.total = options.time_budget > 0 ? 0 : int64_t(std::max(1, options.spp)) * pixels;
-  sc.round = std::max<int64_t>(1, pixels / std::max(1, sc.chains));
-  sc.pixels = pixels;
   std::vector<mcmc::PathChainCounters> counters(static_cast<size_t>(n_chains));
   auto splat = [&](const mcmc::PathSplat& p, double weight, SplatList& out) {
     const int px = std::clamp(int(p.raster.x()), 0, w - 1), py = std::clamp(int(p.raster.y()), 0, h - 1);
@@ -120,37 +123,63 @@ RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& opt
     counters[size_t(c)] = chain.counters();
   });
 
-  RenderResult result;
-  const double scale = run.total_mutations > 0 ? seeder.b() * double(pixels) / double(run.total_mutations) : 0.0;
-  core::Image img(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img(x, y) = (run.sums[0][size_t(y) * size_t(w) + size_t(x)] * scale).cast<float>();
-  if (direct_pass) {
-    const core::Image d = direct_pass->image();
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) img(x, y) += d(x, y);
+  // A part whose chains needed fewer rounds than the whole render's makes the direct
+  // passes the single render made after those rounds (--spp; a --time part keeps its own).
+  if (direct_pass && settings.direct_spp == 0 && options.time_budget <= 0 && !run.interrupted)
+    direct_pass->catch_up(whole_rounds(sc));
+
+  const mcmc::SampleShare share = seeder.share(options.part, options.parts);
+  McmcNorm norm;
+  norm.b.sum = share.sum;
+  norm.b.n = share.n;
+  norm.mutations = run.total_mutations;
+  core::RawImage raw = empty_raw(w, h);
+  raw.sums["splat"] = run.sums[0];
+  norm.write(raw);
+  if (direct_pass) direct_pass->write(raw);
+  RenderResult result = options.raw ? RenderResult{} : finish_mlt_path(raw, finish_options(options), settings);
+  if (options.raw) {
+    result.raw = std::move(raw);
+    fill_part_counts(run.total_mutations, pixels, result);
   }
-  result.layers.push_back({"", std::move(img)});
 
   mcmc::PathChainCounters sum;
   for (const auto& c : counters) sum.merge(c);  // chain order
   result.stats.add(name + ".mutations", run.total_mutations);
   const int64_t invalid = report_path_chains(result, name, mutators, sum);
   result.stats.add(name + ".path.seed_retries", seed_retries);
+  // Shares (the seeder's samples, this part's direct units and chains), so the counters of
+  // the parts of a render sum to the single render's; the direct spp every part makes is
+  // part 1's to report.
   result.stats.add(name + ".nan_dropped",
-                   seeder.invalid() + invalid + (direct_pass ? direct_pass->nan_dropped() : 0));
-  result.stats.add(name + ".direct_spp", direct_pass ? direct_pass->spp_done() : 0);
-  result.stats.add(name + ".bootstrap_samples", seeder.samples());
-  result.min_spp = result.max_spp = run.total_mutations / pixels;
+                   share.invalid + invalid + (direct_pass ? direct_pass->nan_dropped() : 0));
+  result.stats.add(name + ".direct_spp", direct_pass && options.part == 0 ? direct_pass->spp_done() : 0);
+  result.stats.add(name + ".bootstrap_samples", share.n);
   result.info["state_space"] = "path";
-  result.info["b"] = seeder.b();
+  result.info["bootstrap_b"] = seeder.b();
   result.info["bootstrap_seconds"] = bootstrap_seconds;
   result.info["chain_seconds"] = run.seconds;
   result.info["chains"] = n_chains;
   result.info["rounds"] = run.rounds;
-  result.info["mutations_per_pixel"] = double(run.total_mutations) / double(pixels);
   result.wall_seconds = timer.seconds();
   result.partial = run.partial || (direct_pass && direct_pass->partial());
+  return result;
+}
+
+RenderResult finish_mlt_path(const core::RawImage& raw, const RenderOptions& options, const MltSettings& settings) {
+  const McmcNorm norm = McmcNorm::read(raw);
+  const int64_t pixels = int64_t(raw.width) * raw.height;
+  const double scale = norm.scale(pixels);
+  const std::vector<Rgbd>& sum = raw.sum("splat");
+  core::Image img(raw.width, raw.height);
+  for (size_t i = 0; i < sum.size(); ++i) img[i] = (sum[i] * scale).cast<float>();
+  if (settings.direct_spp >= 0) {  // the direct pass's paths (<= 2 segments)
+    const core::Image d = DirectPass::image(raw);
+    for (size_t i = 0; i < sum.size(); ++i) img[i] += d[i];
+  }
+  RenderResult result;
+  result.layers.push_back({"", std::move(img)});
+  fill_mcmc_counts(norm, pixels, options, result);
   return result;
 }
 

@@ -25,5 +25,8 @@ namespace dp::integrators {
 // Counters and the progress label use `name` ("mlt" or "memlt").
 RenderResult render_mlt_path(const scene::Scene& scene, const RenderOptions& options, const MltSettings& settings,
                              const std::string& name);
+// The image of raw buffers (one render's, or the summed parts'; integrators/mcmc_raw.h):
+// b W H / mutations * "splat", plus the direct pass's "direct" mean unless direct_spp = -1.
+RenderResult finish_mlt_path(const core::RawImage& raw, const RenderOptions& options, const MltSettings& settings);
 
 }  // namespace dp::integrators

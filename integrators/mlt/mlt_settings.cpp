@@ -17,7 +17,7 @@ MltSettings MltSettings::read(Settings& s, const MltSettings& defaults) {
   m.large_step_b = s.get_bool("large_step_b", m.large_step_b,
                               "estimate b from the bootstrap and every large step's f (both are independent uniform samples)");
   m.chains = s.get_int("chains", m.chains,
-                       "independent Markov chains (0: 4 per thread; the image then depends on --threads)");
+                       "independent Markov chains (0: 4 per thread, the image then depends on --threads; 16 per part for --part/--mpi)");
   m.rr_depth = s.get_int("rr_depth", m.rr_depth, "Russian roulette only after this many path segments");
   m.nee = s.get_bool("nee", m.nee, "next-event estimation with power-heuristic MIS inside each path");
   const std::string mutations = s.get_string(

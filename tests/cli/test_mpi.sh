@@ -4,6 +4,8 @@
 # (pass, tile) work units as `--part r+1/N`; rank 0 adds the buffers in rank order) for
 # `path`, `gpt`, `bdpt`, `gbdpt`, `vcm`, `gpm`, `gvcm` (every layer, the Poisson reconstructions included), and equals the
 # merge of the 3 `--partial` files of the same shares; counters are summed over the ranks;
+# `mlt` (both state spaces), `memlt` and `gdmlt` (both) run chain shares: N ranks = the
+# merge of N files bit for bit, = the single render up to double rounding;
 # a --time render works; an integrator without raw buffers, a rank that dies and
 # --mpi with --partial are loud failures with no image written.
 # Skipped (exit 0, says so) without mpirun or when deltapath was built without MPI.
@@ -56,10 +58,47 @@ mpirun -np 2 "$bin" render "$tmp/scene.yaml" --integrator gpt --time 1 --quiet -
 check "--time under mpirun exits 0 with samples from both ranks" \
   json_check "$tmp/timed.json" "j['ranks'] == 2 and j['spp_min'] > 0 and j['partial'] == False"
 
-mpirun -np 2 "$bin" render "$tmp/scene.yaml" --integrator mlt --spp 1 --quiet --out "$tmp/mlt.exr" 2>"$tmp/err_mlt"
+# The MCMC integrators: rank r runs chains c = r (mod N) with the whole render's streams
+# and its share of the bootstrap's samples (integrators/mcmc_raw.h); rank 0 adds the
+# buffers in rank order, as merge adds parts: N ranks = the merge of N partial files bit
+# for bit. Against the single render (and 2 ranks against 3 parts) a pixel's splats from
+# several chains are added in another order: equal up to double rounding
+# (same_up_to_rounding, harness.sh), which another bootstrap per rank or a lost rank's
+# buffers fail by far.
+mcmc_configs=("mlt:--integrator mlt" "mlt-path:--integrator mlt --set mutations=path" "memlt:--integrator memlt"
+              "gdmlt:--integrator gdmlt" "gdmlt-path:--integrator gdmlt --set mutations=path --set candidates=2000")
+for config in "${mcmc_configs[@]}"; do
+  label=${config%%:*}
+  read -ra args <<< "${config#*:}"
+  d="$tmp/$label"
+  mkdir -p "$d"
+  r=(render "$tmp/scene.yaml" "${args[@]}" --set chains=6 --set bootstrap=4000 --spp 4 --seed 3 --max-depth 5 --quiet)
+  "$bin" "${r[@]}" --threads 2 --out "$d/single.exr"
+  for k in 1 2 3; do "$bin" "${r[@]}" --threads 1 --partial --part "$k/3" --out "$d/p$k.exr"; done
+  "$bin" merge "$d/p1.exr" "$d/p2.exr" "$d/p3.exr" --quiet --out "$d/merged.exr"
+  for n in 2 3; do
+    mpirun -np $n "$bin" "${r[@]}" --threads 1 --out "$d/mpi$n.exr" 2>"$d/err$n"
+    check "$label: mpirun -np $n exits 0, ranks = $n, 4 mutations per pixel" \
+      json_check "$d/mpi$n.json" "j['ranks'] == $n and j['spp_min'] == 4 and not j['partial'] and j['mpi_bytes_gathered'] > 0"
+    check "$label: only rank 0 wrote (no stderr)" test ! -s "$d/err$n"
+  done
+  check "$label: merge of 3 partial files = mpirun -np 3 bit for bit" same_exr "$d/merged.exr" "$d/mpi3.exr"
+  check "$label: mpirun -np 2 = merge of 3 partial files (up to double rounding)" \
+    same_up_to_rounding "$bin" "$d/mpi2.exr" "$d/merged.exr"
+  check "$label: mpirun -np 3 = the single render (up to double rounding)" \
+    same_up_to_rounding "$bin" "$d/mpi3.exr" "$d/single.exr"
+  check "$label: counters summed over 2 ranks equal the single render's" python3 -c "
+import json,sys
+a=json.load(open('$d/mpi2.json'))['counters']; b=json.load(open('$d/single.json'))['counters']
+bad=[k for k in set(a)|set(b) if a.get(k)!=b.get(k)]
+print('       differ:', bad[:5]) if bad else None
+sys.exit(1 if bad or not b else 0)"
+done
+
+mpirun -np 2 "$bin" render "$tmp/scene.yaml" --integrator pr --spp 1 --quiet --out "$tmp/pr.exr" 2>"$tmp/err_pr"
 code=$?
-check "an integrator without raw buffers fails (exit $code) naming --mpi" grep -q "does not support --mpi" "$tmp/err_mlt"
-check "  ... non-zero exit, no image" test $code -ne 0 -a ! -e "$tmp/mlt.exr"
+check "an integrator without raw buffers fails (exit $code) naming --mpi" grep -q "does not support --mpi" "$tmp/err_pr"
+check "  ... non-zero exit, no image" test $code -ne 0 -a ! -e "$tmp/pr.exr"
 
 # Rank 1 is killed before it renders: mpirun must fail and rank 0 must not write an image.
 mpirun -np 2 bash -c 'if [ "$OMPI_COMM_WORLD_RANK" = 1 ]; then kill -9 $$; fi; exec "$0" "$@"' \

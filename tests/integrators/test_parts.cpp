@@ -12,7 +12,9 @@
 
 #include "core/error.h"
 #include "integrators/integrator.h"
+#include "integrators/chain_scheduler.h"
 #include "integrators/gradient_passes.h"
+#include "integrators/mcmc_raw.h"
 #include "integrators/tile_scheduler.h"
 #include "scene/bsdf/bsdfs.h"
 #include "tests/support/test_scenes.h"
@@ -56,6 +58,13 @@ TEST_CASE("integrators: the parts of a render add up to the render", "[render]")
   for (const std::string& name : integrators::integrator_names()) {
     INFO("integrator " << name);
     integrators::Settings settings;
+    // The MCMC integrators split their chains: one chain count for every part (the
+    // default depends on the part count, integrators/chain_scheduler.h), and a small
+    // bootstrap to keep the test fast.
+    if (name == "mlt" || name == "memlt" || name == "gdmlt") {
+      settings.set("chains", "6", "test");
+      settings.set("bootstrap", "4000", "test");
+    }
     auto in = integrators::make_integrator(name, settings);
     if (!in->supports_raw()) {
       CHECK_THROWS_WITH(in->finish(core::RawImage{}, options(0, 1, false)),
@@ -74,7 +83,10 @@ TEST_CASE("integrators: the parts of a render add up to the render", "[render]")
       else sum.add(part.raw);
     }
     REQUIRE(sum.layout_difference(whole.raw).empty());
-    CHECK(sum.counts.at("spp") == whole.raw.counts.at("spp"));
+    for (const auto& [buffer, values] : whole.raw.counts) {
+      INFO("count " << buffer);
+      CHECK(sum.counts.at(buffer) == values);
+    }
     for (const auto& [buffer, values] : whole.raw.sums) {
       INFO("buffer " << buffer);
       double worst = 0;
@@ -86,7 +98,7 @@ TEST_CASE("integrators: the parts of a render add up to the render", "[render]")
     CHECK(same_layers(in->finish(sum, options(0, 1, false)), direct));
     CHECK_FALSE(direct.partial);
   }
-  CHECK(supported >= 2);  // path and gpt
+  CHECK(supported >= 5);  // path, gpt, ..., mlt, memlt, gdmlt
 }
 
 TEST_CASE("tile scheduler: every work unit belongs to exactly one part", "[unit]") {
@@ -105,6 +117,63 @@ TEST_CASE("tile scheduler: every work unit belongs to exactly one part", "[unit]
   integrators::RenderOptions timed = options(99, 100, true);
   timed.time_budget = 1;  // a time-budgeted part has no unit limit
   CHECK_NOTHROW(integrators::check_parts(40, 40, timed));
+}
+
+TEST_CASE("chain scheduler: each chain runs in exactly one part, with the whole render's quota", "[unit]") {
+  // 7 chains, 3 parts: the parts' runs (chains and mutations) add up to the single run's.
+  integrators::ChainSchedule sc;
+  sc.chains = 7;
+  sc.total = 1000;  // 1000 % 7 = 6: the first 6 chains take one more
+  sc.round = 60;
+  sc.pixels = 1;
+  auto run = [&](int part, int parts) {
+    integrators::ChainSchedule s = sc;
+    s.part = part;
+    s.parts = parts;
+    return integrators::run_chains(s, options(part, parts, true), "test",
+                                   [](int c, int64_t n, integrators::SplatList& out, int) {
+                                     out.add(0, 0, Rgbd::Constant(double(c + 1) * double(n)));
+                                   });
+  };
+  const integrators::ChainRunResult whole = run(0, 1);
+  std::vector<int64_t> mutations(7, 0);
+  int64_t total = 0;
+  for (int k = 0; k < 3; ++k) {
+    const integrators::ChainRunResult part = run(k, 3);
+    CHECK_FALSE(part.partial);  // complete for its own chains
+    for (int c = 0; c < 7; ++c) {
+      CHECK((part.mutations[size_t(c)] > 0) == (c % 3 == k));
+      mutations[size_t(c)] += part.mutations[size_t(c)];
+    }
+    total += part.total_mutations;
+    CHECK(part.rounds <= integrators::whole_rounds(sc));
+  }
+  CHECK(mutations == whole.mutations);
+  CHECK(total == 1000);
+  CHECK(whole.rounds == integrators::whole_rounds(sc));  // ceil(143 / 60) = 3
+  CHECK(whole.rounds == 3);
+}
+
+TEST_CASE("MCMC normalisation: write/read round trip, summed shares give one b", "[unit]") {
+  for (int w : {1, 4}) {
+    integrators::McmcNorm a, b;
+    a.b = {3.0, 10, 0};
+    a.factor = {1.5, 4, 0};
+    a.mutations = 123;
+    b.b = {1.0, 6, 0};
+    b.factor = {0.5, 4, 0};
+    b.mutations = 77;
+    core::RawImage ra = integrators::empty_raw(w, 1), rb = integrators::empty_raw(w, 1);
+    a.write(ra);
+    b.write(rb);
+    ra.add(rb);
+    const integrators::McmcNorm m = integrators::McmcNorm::read(ra);
+    CHECK(m.b.n == 16);
+    CHECK(m.factor.n == 8);
+    CHECK(m.mutations == 200);
+    CHECK(m.value() == Approx((4.0 / 16.0) * (2.0 / 8.0)));  // (sum b / n) (sum factor / n)
+    CHECK(m.scale(w) == Approx(m.value() * w / 200.0));
+  }
 }
 
 TEST_CASE("tile scheduler: time-budgeted parts take passes k, n + k, 2n + k, ... of the single render", "[unit]") {
