@@ -41,4 +41,21 @@ RenderResult finish_tiled(const FinishFunction& finish, core::RawImage raw, cons
   return result;
 }
 
+RenderResult finish_iterations(const FinishFunction& finish, int width, int height, std::vector<Rgbd>&& total,
+                               int64_t done, int64_t target, bool stopped, const RenderOptions& options) {
+  core::RawImage raw;
+  raw.width = width;
+  raw.height = height;
+  raw.sums["radiance"] = std::move(total);
+  raw.counts["spp"].assign(size_t(width) * size_t(height), done);  // one sample per pixel per iteration
+  const bool timed = options.time_budget > 0;
+  RenderOptions finish_options = options;
+  if (timed) finish_options.spp = 0;  // a time budget has no count to fall short of
+  RenderResult result = options.raw ? RenderResult{} : finish(raw, finish_options);
+  if (options.raw) result.raw = std::move(raw);
+  result.min_spp = result.max_spp = done;
+  result.partial = stopped || (!timed && done < target);  // a stop, also in --time mode
+  return result;
+}
+
 }  // namespace dp::integrators

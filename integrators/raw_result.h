@@ -27,4 +27,11 @@ using FinishFunction = std::function<RenderResult(const core::RawImage& raw, con
 RenderResult finish_tiled(const FinishFunction& finish, core::RawImage raw, const ScheduleResult& sched,
                           const RenderOptions& options);
 
+// The end of a progressive render (photon iterations) with one radiance buffer: `total`
+// becomes the raw "radiance" sums with "spp" = `done` iterations in every pixel, then the
+// raw buffers (RenderOptions::raw) or finish() (spp 0 under a time budget); spp range and
+// partial = stopped, or fewer than `target` iterations in --spp mode.
+RenderResult finish_iterations(const FinishFunction& finish, int width, int height, std::vector<Rgbd>&& total,
+                               int64_t done, int64_t target, bool stopped, const RenderOptions& options);
+
 }  // namespace dp::integrators

@@ -8,6 +8,7 @@
 #include "core/timer.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/radiance_render.h"
+#include "integrators/raw_result.h"
 #include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
@@ -101,18 +102,7 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
   }
   progress.finish();
 
-  core::RawImage raw;
-  raw.width = w;
-  raw.height = h;
-  raw.sums["radiance"] = std::move(total);
-  raw.counts["spp"] = std::vector<int64_t>(size_t(w) * size_t(h), done);
-  RenderOptions finish_options = options;
-  if (timed) finish_options.spp = 0;  // a time budget has no count to fall short of
-  RenderResult result;
-  if (options.raw) result.raw = std::move(raw);
-  else result = finish_radiance(raw, finish_options);
-  result.partial = partial || (!timed && done < target);
-  result.min_spp = result.max_spp = done;
+  RenderResult result = finish_iterations(finish_radiance, w, h, std::move(total), done, target, partial, options);
   for (const auto& s : thread_stats) result.stats.merge(s);
   photon_counters.flush(result.stats, prefix);
   result.stats.add(prefix + ".iterations", done);

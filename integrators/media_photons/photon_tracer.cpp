@@ -51,6 +51,17 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
   // The medium the light sits in: the near side of the first surface if it is a boundary.
   int medium = found ? scene::medium_toward(hit, -ray.d, cam_medium, cam_medium) : cam_medium;
   int nulls = 0;
+  // Russian roulette after the bounce that makes segment s (relative to the emitted power).
+  auto survive = [&](int segment) {
+    if (segment <= params.rr_depth) return true;
+    const float q = std::min(0.95f, max_component(beta) / beta0);
+    if (!(rng.uniform() < q)) {
+      ++c.rr_terminated;
+      return false;
+    }
+    beta /= q;
+    return true;
+  };
   for (int s = 1; s <= max_store;) {
     if (medium >= 0) {
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
@@ -71,15 +82,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         ray.d = scene::HenyeyGreenstein(med.phase).sample(ray.d, rng.uniform2());  // weight rho_p / pdf = 1
         ray.tmin = 0.0f;
         ray.tmax = kInfinity;
-        ++s;
-        if (s > params.rr_depth) {
-          const float q = std::min(0.95f, max_component(beta) / beta0);
-          if (!(rng.uniform() < q)) {
-            ++c.rr_terminated;
-            return;
-          }
-          beta /= q;
-        }
+        if (!survive(++s)) return;
         found = scene.intersect(ray, hit);
         continue;
       }
@@ -109,15 +112,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
     if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) return;
     beta *= bs->weight;
     medium = scene::medium_toward(hit, wo, medium, cam_medium);
-    ++s;
-    if (s > params.rr_depth) {
-      const float q = std::min(0.95f, max_component(beta) / beta0);
-      if (!(rng.uniform() < q)) {
-        ++c.rr_terminated;
-        return;
-      }
-      beta /= q;
-    }
+    if (!survive(++s)) return;
     ray = scene.continue_ray(hit, wo);
     found = scene.trace_from(hit, wo, hit);
   }

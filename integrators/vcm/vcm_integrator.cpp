@@ -7,6 +7,7 @@
 #include "core/thread_pool.h"
 #include "core/timer.h"
 #include "integrators/radiance_render.h"
+#include "integrators/raw_result.h"
 #include "integrators/tile_scheduler.h"
 #include "integrators/vcm/vcm_camera.h"
 
@@ -135,19 +136,10 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
   }
   progress.finish();
 
-  core::RawImage raw;
-  raw.width = w;
-  raw.height = h;
-  raw.sums["radiance"] = std::move(total);
-  raw.counts["spp"].assign(size_t(pixels), done);  // one sample per pixel per iteration
-  RenderOptions finish_options = options;
-  if (timed) finish_options.spp = 0;
-  RenderResult result = options.raw ? RenderResult{} : finish(raw, finish_options);
-  if (options.raw) result.raw = std::move(raw);
+  RenderResult result = finish_iterations([this](const core::RawImage& r, const RenderOptions& o) { return finish(r, o); },
+                                          w, h, std::move(total), done, target, interrupted, options);
   write_counters(totals, done, done * pixels, result.stats);
   result.wall_seconds = timer.seconds();
-  result.min_spp = result.max_spp = done;
-  result.partial = interrupted || (!timed && done < target);  // a stop, also in --time mode
   result.info["passes"] = done;
   result.info["mode"] = VcmSettings::mode_name(m_settings.mode);
   result.info["radius_initial"] = double(r0);
