@@ -186,7 +186,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--out", args->out, "output EXR (also writes .png and .json beside it)");
   cmd->add_flag("--quiet", args->quiet, "no progress bar or info messages");
   auto* partial = cmd->add_flag("--partial", args->partial,
-                                "write raw sums and sample counts for `deltapath merge` (path, volpath, vpm, bre, gpt, bdpt, gbdpt, vcm, gpm, gvcm, mlt, memlt, gdmlt)");
+                                "write raw sums and sample counts for `deltapath merge` (every integrator)");
   cmd->add_option("--part", args->part, "render share K of N (1-based) for `merge`; needs --partial")
       ->check(part_spec())
       ->needs(partial);

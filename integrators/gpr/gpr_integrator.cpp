@@ -31,11 +31,12 @@ RenderResult GprIntegrator::render(const scene::Scene& scene, const RenderOption
       },
       m_settings.jitter);
   passes.passes = passes.kept = sched.iterations;
-  passes.partial = sched.interrupted || (options.time_budget <= 0 && sched.min_count() < std::max(1, options.spp));
+  passes.partial = sched.partial;
   passes.render_seconds = sched.seconds;
 
   RenderResult result =
-      gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+      options.raw ? gradient_raw_result(passes, thread_stats)
+                  : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
   // The paper's Table 1: base paths skipped by Russian roulette, and base paths reused per
   // pixel and per gradient estimate (also as a share of the extended tile's base paths).
   const core::Stats& st = result.stats;
@@ -54,6 +55,11 @@ RenderResult GprIntegrator::render(const scene::Scene& scene, const RenderOption
   result.info["paths_per_gradient_percent"] = 100.0 * ppg / per_tile;
   result.wall_seconds = timer.seconds();
   return result;
+}
+
+// The reconstruction of (summed) raw buffers, as gpt's: the same code a single render runs.
+RenderResult GprIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
 }
 
 }  // namespace dp::integrators

@@ -21,6 +21,10 @@ class GprIntegrator final : public Integrator {
   GprIntegrator(const GprSettings& settings, const core::Json& json) : m_settings(settings), m_json(json) {}
   std::string name() const override { return "gpr"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // `render --partial`/`--mpi` (issue 17): part k of n runs the global iterations k, k + n, ...
+  // (reuse_iterations.h), so the parts' summed buffers are the single render's.
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   GprSettings m_settings;

@@ -19,6 +19,10 @@ class PrIntegrator final : public Integrator {
   PrIntegrator(const PrSettings& settings, const core::Json& json) : m_settings(settings), m_json(json) {}
   std::string name() const override { return "pr"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  // `render --partial`/`--mpi` (issue 17): part k of n runs the global iterations k, k + n, ...
+  // (reuse_iterations.h), so the parts' summed buffers are the single render's.
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
   PrSettings m_settings;

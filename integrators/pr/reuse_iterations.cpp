@@ -17,18 +17,20 @@ ReuseSchedule run_reuse_iterations(int w, int h, int tile_size, const RenderOpti
                                    const ReuseTileFunction& fn, bool jitter) {
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  const int spp = std::max(1, options.spp);
+  const int64_t parts = std::max(1, options.parts), part = options.part;
+  const int64_t target = timed ? 0 : (std::max(1, options.spp) + parts - 1 - part) / parts;  // this part's share
   ReuseSchedule out;
   out.count.assign(size_t(w) * size_t(h), 0);
   core::Timer timer;
-  core::Progress progress(label, timed ? 1000 : spp, options.quiet);
+  core::Progress progress(label, timed ? 1000 : target, options.quiet);
   std::atomic<bool> stop{false};
   auto should_stop = [&] {
     if (options.stop && options.stop->load()) return true;
     return timed && timer.seconds() >= options.time_budget;
   };
-  for (int64_t it = 0; timed || it < spp; ++it) {
-    const bool first = it == 0;  // always completes: every pixel gets a sample
+  for (int64_t k = 0; timed || k < target; ++k) {
+    const int64_t it = part + k * parts;  // the global iteration
+    const bool first = k == 0;  // always completes: every pixel gets a sample
     if (!first && should_stop()) break;
     const ReuseTiling tiling = jittered_tiling(w, h, tile_size, options.seed, it, jitter);
     core::parallel_for(
@@ -52,6 +54,7 @@ ReuseSchedule run_reuse_iterations(int w, int h, int tile_size, const RenderOpti
   }
   progress.finish();
   out.interrupted = options.stop && options.stop->load();
+  out.partial = out.interrupted || (!timed && out.iterations < target);
   out.seconds = timer.seconds();
   return out;
 }

@@ -4,7 +4,9 @@
 // budget is used up (steady_clock); the first iteration always completes, later ones stop
 // at tile boundaries (Ctrl-C or budget). Tile `item` of iteration `it` draws from the
 // stream (seed, mix(it, item)), so a render depends only on the seed, not on the thread
-// count. The tiles of one iteration are disjoint: a tile function may write the pixels of
+// count. Part k of n (RenderOptions::part/parts: `render --partial --part`, `--mpi`) runs
+// the global iterations k, k + n, ... with those iterations' tilings and streams, so the
+// parts together do exactly the single render's work. The tiles of one iteration are disjoint: a tile function may write the pixels of
 // its tile (for `gpr`: the gradient pairs whose first pixel is in it) without locking.
 #pragma once
 
@@ -23,6 +25,7 @@ struct ReuseSchedule {
   int64_t iterations = 0;        // iterations started (the last may be incomplete)
   std::vector<int64_t> count;    // per pixel (row-major): iterations whose tile rendered it
   bool interrupted = false;      // stopped by options.stop
+  bool partial = false;          // interrupted, or fewer than this part's share of --spp
   double seconds = 0;            // wall time of the iterations
   int64_t min_count() const;
   int64_t max_count() const;

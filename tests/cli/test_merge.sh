@@ -36,7 +36,7 @@ same_exr() {
 sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path volpath gpt bdpt gbdpt gpm gvcm vcm; do
+for integrator in path volpath vpm bre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=("$bin" render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
@@ -69,7 +69,7 @@ check "gpt: merged sidecar sums the parts' counters" \
 # Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
 # own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
 # the merge has every pixel sampled and is not partial.
-for integrator in path volpath gpt bdpt gbdpt gpm gvcm vcm; do
+for integrator in path volpath vpm bre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
   for k in 1 2; do
     "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
       --partial --part $k/2 --out "$tmp/t$integrator$k.exr"
@@ -201,8 +201,6 @@ check "merge of 1 of 2 parts warns about part 2" grep -q "parts 2 of 2 are missi
 check "merge of 1 of 2 parts is marked partial" json_check "$tmp/half.json" "j['partial'] and j['spp_min'] < 8"
 
 # Option misuse.
-check "--partial with an integrator without support is refused" \
-  fails_with "integrator pr does not support --partial yet" "$bin" render "$tmp/scene.yaml" --integrator pr --spp 1 --quiet --partial --out "$tmp/misuse.exr"
 check "more parts than work units is refused" \
   fails_with "only 15 work units" "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --partial --part 1/16 --out "$tmp/misuse.exr"
 "$bin" render "$tmp/scene.yaml" --spp 1 --quiet --part 1/2 --out "$tmp/misuse.exr" 2>/dev/null
