@@ -31,7 +31,6 @@ double bare_loop(const scene::Scene& s, Counts target, int threads) {
   const auto& cam = s.camera();
   const auto& accel = s.accel();
   const Bounds3 b = s.bounds();
-  const float eps = s.ray_epsilon();
   core::Timer timer;
   const int64_t chunks = 256;
   core::parallel_for(chunks, threads, [&](int64_t chunk, int) {
@@ -46,7 +45,7 @@ double bare_loop(const scene::Scene& s, Counts target, int threads) {
         const Vec3 p = ray.at(hit.t);
         Vec3 n = hit.ng.normalized();
         if (n.dot(ray.d) > 0) n = -n;
-        const Vec3 origin = p + n * eps * (1.0f + p.cwiseAbs().maxCoeff());
+        const Vec3 origin = p + n * scene::Scene::epsilon_at(p);
         if (shadow > 0) {
           const Vec3 target_p = b.lo + (b.hi - b.lo).cwiseProduct(Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
           Ray sr{origin, (target_p - origin).normalized(), 0.0f, (target_p - origin).norm()};

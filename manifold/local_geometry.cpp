@@ -172,11 +172,10 @@ std::optional<TraceHit> trace(const scene::Scene& scene, const Vec3d& origin, co
   Vec3d o = origin;
   if (ng_origin.squaredNorm() > 0) {
     const double side = dir.dot(ng_origin) >= 0 ? 1.0 : -1.0;
-    // Scene::ray_epsilon() already scales with the scene's extent; scaling it again by
-    // |origin| moved the float ray by ~1 unit in a 556-unit Cornell box (1e-5 * 556 *
-    // (1 + 200)), so Embree hit other points than the exact ray and the refinement
-    // below fell back to them (chains re-traced off their vertices by up to 10 units).
-    const double eps = double(scene.ray_epsilon());
+    // The scene's one offset rule (Scene::epsilon_at). An earlier rule scaled it by the
+    // scene's extent as well (~1 unit in a 556-unit Cornell box), so Embree hit other
+    // points than the exact ray and the refinement below fell back to them.
+    const double eps = double(scene::Scene::epsilon_at(origin.cast<float>()));
     o = origin + side * eps * ng_origin;
     ray.o = o.cast<float>();
   }

@@ -56,9 +56,6 @@ void Scene::commit() {
     m_bounds.expand(m_camera->position());
     m_bounds.expand(m_camera->position() + m_camera->forward());
   }
-  // Ray offsets scale with the magnitude of coordinates (float has ~7 digits).
-  const float extent = std::max(m_bounds.lo.cwiseAbs().maxCoeff(), m_bounds.hi.cwiseAbs().maxCoeff());
-  m_epsilon = 1e-5f * std::max(1.0f, extent);
   for (auto& e : m_emitters) e->prepare(m_bounds);
 
   m_caps = Caps();
@@ -124,7 +121,7 @@ bool Scene::occluded(const Vec3& a, const Vec3& b) const {
   if (!(len > 0.0f)) return false;
   Ray r;
   r.d = d / len;
-  const float ea = m_epsilon * (1.0f + a.cwiseAbs().maxCoeff()), eb = m_epsilon * (1.0f + b.cwiseAbs().maxCoeff());
+  const float ea = epsilon_at(a), eb = epsilon_at(b);
   r.o = a;
   r.tmin = ea;
   r.tmax = len - eb;

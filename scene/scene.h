@@ -80,7 +80,7 @@ class Scene {
     Ray r;
     r.o = sp.p;
     r.d = d;
-    r.tmin = m_epsilon * (1.0f + sp.p.cwiseAbs().maxCoeff());
+    r.tmin = epsilon_at(sp.p);
     r.tmax = kInfinity;
     return r;
   }
@@ -101,7 +101,7 @@ class Scene {
   // and a Ray returned from an out-of-line call is reloaded through memory.)
   Ray spawn_ray(const SurfacePoint& sp, const Vec3& d) const {
     Ray r;
-    r.o = offset_origin(sp.p, sp.ng, d, m_epsilon);
+    r.o = offset_origin(sp.p, sp.ng, d);
     r.d = d;
     r.tmin = 0.0f;
     r.tmax = kInfinity;
@@ -111,12 +111,12 @@ class Scene {
   Ray spawn_segment(const SurfacePoint& sp, const Vec3& target) const {
     const Vec3 d0 = target - sp.p;
     Ray r;
-    r.o = offset_origin(sp.p, sp.ng, d0, m_epsilon);
+    r.o = offset_origin(sp.p, sp.ng, d0);
     const Vec3 d = target - r.o;
     const float len = d.norm();
     r.d = d / len;
     r.tmin = 0.0f;
-    r.tmax = std::max(0.0f, len - 2.0f * m_epsilon * (1.0f + target.cwiseAbs().maxCoeff()));
+    r.tmax = std::max(0.0f, len - 2.0f * epsilon_at(target));
     return r;
   }
 
@@ -149,13 +149,18 @@ class Scene {
   const std::string& source() const { return m_source; }
   size_t triangle_count() const;
   size_t degenerate_triangles_skipped() const;
-  float ray_epsilon() const { return m_epsilon; }
+  // The one ray-offset rule: a relative epsilon times the point's magnitude (float keeps
+  // ~7 digits of a coordinate, so the rounding of p grows with |p|; Mitsuba's mint uses
+  // the same (1 + max|p|) form). The scene's extent does not enter: an earlier rule also
+  // scaled by it, so offsets grew with extent * |p| (~3 units in the 556-unit Cornell box).
+  static constexpr float kRelativeEpsilon = 1e-5f;
+  static float epsilon_at(const Vec3& p) { return kRelativeEpsilon * (1.0f + p.cwiseAbs().maxCoeff()); }
   // The raw acceleration structure (benchmarks compare against bare ray loops).
   const EmbreeAccel& accel() const { return *m_accel; }
 
  private:
-  static Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& d, float eps) {
-    const float scale = eps * (1.0f + p.cwiseAbs().maxCoeff());
+  static Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& d) {
+    const float scale = epsilon_at(p);
     return p + (ng.dot(d) >= 0.0f ? scale : -scale) * ng;
   }
 
@@ -170,7 +175,6 @@ class Scene {
   IntegratorDefaults m_integrator;
   Caps m_caps;
   Bounds3 m_bounds;
-  float m_epsilon = 1e-4f;
   std::string m_source;
   std::unique_ptr<EmbreeAccel> m_accel;
   bool m_committed = false;

@@ -133,7 +133,7 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   r.d = ds.wi;
   r.tmin = 0.0f;
   const bool finite = std::isfinite(ds.dist);
-  r.tmax = finite ? std::max(0.0f, ds.dist - 2.0f * m_scene.ray_epsilon() * (1.0f + ds.p.cwiseAbs().maxCoeff()))
+  r.tmax = finite ? std::max(0.0f, ds.dist - 2.0f * scene::Scene::epsilon_at(ds.p))
                   : kInfinity;
   const Rgb tr = shadow_transmittance(r, medium, finite ? &ds.p : nullptr, c);
   if (is_black(tr)) return Rgb::Zero();
