@@ -56,13 +56,14 @@ GradientPasses render_gradient_passes(int w, int h, const RenderOptions& options
 }
 
 RenderResult gradient_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats, float alpha,
-                             const std::string& reconstruction, int threads, const core::Json& settings) {
+                             const std::string& reconstruction, const RenderOptions& options,
+                             const core::Json& settings) {
   RenderResult result;
   for (const auto& s : thread_stats) result.stats.merge(s);
   // Screened Poisson reconstruction without the direct layer (Lehtinen 2013, Eq. 8;
   // Kettunen 2015, Sec. 6; Manzi 2015, Sec. 5), which is added back afterwards.
   const gradients::GradientBuffers& total = passes.total;
-  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), alpha, reconstruction, threads, result);
+  add_gradient_layers(total.primal(), total.dx(), total.dy(), total.direct(), alpha, reconstruction, options, result);
   passes.fill(result);
   result.info["settings"] = settings;
   return result;
@@ -97,7 +98,7 @@ void GradientPasses::fill(RenderResult& result) const {
     }
   result.min_spp = lo;
   result.max_spp = hi;
-  result.partial = partial;
+  result.partial |= partial;  // an interrupted reconstruction (gradient_output.h) is partial too
   result.info["passes"] = passes;
   result.info["passes_kept"] = kept;
   result.info["render_seconds"] = render_seconds;
@@ -106,8 +107,8 @@ void GradientPasses::fill(RenderResult& result) const {
 RenderResult gradient_finish(const core::RawImage& raw, const RenderOptions& options, float alpha,
                              const std::string& reconstruction, const core::Json& settings) {
   core::Timer timer;
-  RenderResult result = gradient_result(gradient_passes_from_raw(raw, options.spp), {}, alpha, reconstruction,
-                                        resolve_threads(options), settings);
+  RenderResult result =
+      gradient_result(gradient_passes_from_raw(raw, options.spp), {}, alpha, reconstruction, options, settings);
   result.wall_seconds = timer.seconds();
   return result;
 }

@@ -35,7 +35,8 @@ using GradientTileFunction =
 // screened Poisson L1 and L2 without the direct layer, which is added back), fill() and
 // info["settings"] = settings. The caller sets wall_seconds (solves included).
 RenderResult gradient_result(const GradientPasses& passes, const std::vector<core::Stats>& thread_stats, float alpha,
-                             const std::string& reconstruction, int threads, const core::Json& settings);
+                             const std::string& reconstruction, const RenderOptions& options,
+                             const core::Json& settings);
 
 // `render --partial` (options.raw): the raw buffers (GradientBuffers::to_raw), merged
 // counters and fill(), without the reconstruction.

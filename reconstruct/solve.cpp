@@ -286,6 +286,10 @@ SolveResult solve_l1(const Problem& problem, const SolveOptions& options) {
   };
   std::vector<Sum> sums(static_cast<size_t>(threads));
   for (int it = 1; it <= options.reweightings; ++it) {
+    if (options.stop && options.stop->load(std::memory_order_relaxed)) {
+      result.interrupted = true;
+      break;
+    }
     // Reference IRLS schedule (ALGORITHMS.md): reg = 0.05 * 0.5^(k-1), w = 1/(|e|_2 + reg).
     const double reg = 0.05 * std::pow(0.5, it - 1);
     CgSettings cg;

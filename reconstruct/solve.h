@@ -25,6 +25,7 @@
 // output never contains them.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -61,6 +62,11 @@ struct SolveOptions {
   int reweightings = 20;
   int irls_cg_iterations = 50;
   double irls_cg_tolerance = 1e-4;
+  // Interrupts (issue 18): when this flag is set, solve_l1 stops before its next
+  // reweighting and returns its current iterate (the L2 solution or a later IRLS image,
+  // each a complete image), with SolveResult::interrupted. A reweighting at 1280x720
+  // takes ~0.1 s, so a signal is honoured within about that.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct InputReport {
@@ -75,7 +81,8 @@ struct SolveResult {
   std::string method;              // "dct", "pcg", "irls+dct", "irls+pcg"
   std::string preconditioner;      // of the CG runs: "multigrid", "block_ic" or "" (none ran)
   int cg_iterations = 0;           // total over all CG runs
-  int reweightings = 0;            // L1 only
+  int reweightings = 0;            // L1 only: the reweightings done
+  bool interrupted = false;        // L1 only: stopped by SolveOptions::stop before the last
   double relative_residual = 0.0;  // of the last CG run (0 for the DCT)
   double seconds = 0.0;            // wall time (steady clock)
 };

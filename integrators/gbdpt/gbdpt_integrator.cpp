@@ -27,7 +27,7 @@ RenderResult GbdptIntegrator::render(const scene::Scene& scene, const RenderOpti
 
   RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
                                     : gradient_result(passes, thread_stats, m_settings.alpha,
-                                                      m_settings.reconstruction, threads, m_json);
+                                                      m_settings.reconstruction, options, m_json);
   result.wall_seconds = timer.seconds();
   return result;
 }

@@ -196,7 +196,7 @@ RenderResult GdmltIntegrator::render(const scene::Scene& scene, const RenderOpti
   result.stats.add("gdmlt.manifold.walks", target_sum.walks.attempted);
   result.wall_seconds = timer.seconds();
   result.stats.add("gdmlt.direct.nan_dropped", direct.nan_dropped());
-  result.partial = run.partial || direct.partial();
+  result.partial = result.partial || run.partial || direct.partial();  // or an interrupted reconstruction
   result.info["direct_spp"] = direct.spp_done();
   result.info["settings"] = m_json;
   return result;

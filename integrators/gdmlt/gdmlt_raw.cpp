@@ -140,7 +140,6 @@ void add_gdmlt_layers(const core::RawImage& raw, const RenderOptions& options, c
   // direct pass added (Sec. 4). Once, on the summed buffers of all parts.
   const core::Image primal = image_of(raw.sum("primal"), scale);
   const core::Image direct = DirectPass::image(raw);
-  const int threads = resolve_threads(options);
   if (settings.kernel == "standard") {
     // Rows in forward-difference order (kernels_adaptive::standard_kernel): dx, then dy.
     core::Image dx(w, h), dy(w, h);
@@ -149,12 +148,12 @@ void add_gdmlt_layers(const core::RawImage& raw, const RenderOptions& options, c
       for (int x = 0; x + 1 < w; ++x) dx(x, y) = row_values[r++];
     for (int y = 0; y + 1 < h; ++y)
       for (int x = 0; x < w; ++x) dy(x, y) = row_values[r++];
-    add_gradient_layers(primal, dx, dy, direct, settings.alpha, settings.reconstruction, threads, result);
+    add_gradient_layers(primal, dx, dy, direct, settings.alpha, settings.reconstruction, options, result);
   } else {
     reconstruct::Problem problem = kernels_adaptive::make_problem(kernel, primal, std::move(row_values), settings.alpha);
     if (settings.symmetric_weight != 1.0)
       problem.row_weights = reconstruct::reversed_pair_weights(problem.kernel, float(settings.symmetric_weight));
-    add_reconstruction_layers(problem, direct, settings.reconstruction, threads, result);
+    add_reconstruction_layers(problem, direct, settings.reconstruction, options, result);
     reconstruct::append_pair_layers(reconstruct::encode_pair_layers(problem.kernel, problem.b), result.layers);
     result.layers.push_back({"features.normal", feature_image(features.normal, w, h)});
     result.layers.push_back({"features.albedo", feature_image(features.albedo, w, h)});

@@ -45,7 +45,7 @@ RenderResult GpmIntegrator::render(const scene::Scene& scene, const RenderOption
 
   RenderResult result = options.raw ? gradient_raw_result(run.passes, run.thread_stats)
                                     : gradient_result(run.passes, run.thread_stats, m_settings.alpha,
-                                                      m_settings.reconstruction, threads, m_json);
+                                                      m_settings.reconstruction, options, m_json);
   result.stats.add("gpm.iterations", run.passes.kept);
   result.stats.add("gpm.light_paths", run.passes.kept * pixels);
   result.stats.add("gpm.light_vertices", run.light.light_vertices);

@@ -36,7 +36,7 @@ RenderResult GprIntegrator::render(const scene::Scene& scene, const RenderOption
 
   RenderResult result =
       options.raw ? gradient_raw_result(passes, thread_stats)
-                  : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, threads, m_json);
+                  : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction, options, m_json);
   // The paper's Table 1: base paths skipped by Russian roulette, and base paths reused per
   // pixel and per gradient estimate (also as a share of the extended tile's base paths).
   const core::Stats& st = result.stats;

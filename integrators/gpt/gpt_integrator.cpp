@@ -30,7 +30,7 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
 
   RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
                                     : gradient_result(passes, thread_stats, m_settings.alpha,
-                                                      m_settings.reconstruction, threads, m_json);
+                                                      m_settings.reconstruction, options, m_json);
   result.wall_seconds = timer.seconds();
   return result;
 }

@@ -42,7 +42,7 @@ RenderResult GvcmIntegrator::render(const scene::Scene& scene, const RenderOptio
 
   RenderResult result = options.raw ? gradient_raw_result(run.passes, run.thread_stats)
                                     : gradient_result(run.passes, run.thread_stats, m_settings.alpha,
-                                                      m_settings.reconstruction, threads, m_json);
+                                                      m_settings.reconstruction, options, m_json);
   result.stats.add("gvcm.iterations", run.passes.kept);
   result.stats.add("gvcm.light_paths", run.passes.kept * pixels);
   result.stats.add("gvcm.light_vertices", run.light.light_vertices);

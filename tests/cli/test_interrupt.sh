@@ -81,6 +81,29 @@ run_and_signal "$tmp/gpt" 1.5 TERM "$tmp/box.yaml" --integrator gpt --spp 100000
 check "SIGTERM during gpt exits 143 (got $code)" test "$code" = 143
 check_partial_outputs "$tmp/gpt" "gpt SIGTERM"
 
+# 2b. A signal during the reconstruction (the L1 solve of 1600 x 1200 pixels takes ~3 s on 2
+#     threads; the render prints "reconstructing" when it starts): the solve stops at its next
+#     reweighting, the outputs are written complete and partial, and the json says the
+#     reconstruction was interrupted after fewer than its 20 reweightings.
+d="$tmp/recon"
+mkdir -p "$d"
+errfile="$d/err"
+sed 's/resolution: \[48, 32\]/resolution: [1600, 1200]/' "$tmp/box.yaml" > "$d/big.yaml"
+"$bin" render "$d/big.yaml" --integrator gpt --spp 1 --threads 2 --out "$d/out.exr" 2>"$d/err" &
+pid=$!
+i=0
+while ! grep -q "^reconstructing" "$d/err" 2>/dev/null && kill -0 $pid 2>/dev/null && [ $i -lt 1200 ]; do
+  sleep 0.05
+  i=$((i + 1))
+done
+sleep 0.3
+kill -TERM $pid
+wait_bounded $pid
+check "SIGTERM during gpt's reconstruction exits 143 (got $code)" test "$code" = 143
+check_partial_outputs "$d" "reconstruction SIGTERM"
+check "reconstruction SIGTERM: json says the L1 solve was interrupted before its 20 reweightings" \
+  json_check "$d/out.json" "j['info']['reconstruction_interrupted'] is True and j['info']['solve_l1_reweightings'] < 20"
+
 # 3. A signal while the scene loads (the scene is a FIFO nobody writes: the loader blocks in
 #    it): one line on stderr, exit 128 + signal, nothing written.
 for sig in TERM INT; do
