@@ -16,11 +16,16 @@ function(dp_add_library name)
   dp_sanitize_target(${name})
 endfunction()
 
-# dp_add_test(name SOURCES ... DEPS ... LABELS unit stat ...): one Catch2 executable;
-# one ctest entry per label, running the test cases tagged [label].
+# dp_add_test(name SOURCES ... [OWN_UNIT ...] DEPS ... LABELS unit stat ...): one Catch2
+# executable; one ctest entry per label, running the test cases tagged [label]. OWN_UNIT
+# lists sources kept out of the unity batches (their file-local helpers share names with
+# another file's of the same test).
 function(dp_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;OWN_UNIT;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  if(ARG_OWN_UNIT)
+    set_source_files_properties(${ARG_OWN_UNIT} TARGET_DIRECTORY ${name} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+  endif()
   target_link_libraries(${name} PRIVATE dp_test_main ${ARG_DEPS})
   target_compile_definitions(${name} PRIVATE DP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   dp_sanitize_target(${name})

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gradients/manifold_shift.h"  // shift_status(WalkStatus)
 #include "gradients/shift_helpers.h"
 #include "manifold/local_geometry.h"
 #include "pathspace/classify.h"
@@ -14,13 +15,6 @@ using manifold::WalkStatus;
 using pathspace::Path;
 using pathspace::Vertex;
 using pathspace::VertexKind;
-
-namespace {
-ShiftStatus shift_status(WalkStatus s) {
-  return s == WalkStatus::miss || s == WalkStatus::different_object ? ShiftStatus::occluded : ShiftStatus::not_invertible;
-}
-bool is_refraction(const Vertex& v) { return v.wi.z() * v.wo.z() < 0.0f; }
-}  // namespace
 
 OcclusionDecision symmetric_threshold(std::function<float(const Vec3&)> coefficient, float threshold) {
   return [c = std::move(coefficient), threshold](const Vec3& a, const Vec3& b) {

@@ -18,8 +18,6 @@ using pathspace::VertexKind;
 
 namespace {
 
-bool is_refraction(const Vertex& v) { return v.wi.z() * v.wo.z() < 0.0f; }
-
 // A chain vertex: every condition here depends only on the vertex's shape (material,
 // emitter) and its sampled lobe, which base and offset share.
 bool specular_chain_vertex(const Vertex& v) {

@@ -9,6 +9,9 @@ namespace dp::gradients {
 
 inline Vec3d d3(const Vec3& v) { return v.cast<double>(); }
 
+// The vertex's sampled lobe crosses the surface (wi and wo on opposite sides, local frame).
+inline bool is_refraction(const pathspace::Vertex& v) { return v.wi.z() * v.wo.z() < 0.0f; }
+
 // The offset vertex's incoming direction lies on the side its local frame says it does.
 inline bool wi_consistent(const pathspace::Vertex& v) {
   return pathspace::consistent_side(v.hit, v.hit.shading.to_world(v.wi), v.wi.z());

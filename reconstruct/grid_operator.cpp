@@ -8,14 +8,6 @@
 
 namespace dp::reconstruct {
 
-namespace {
-
-// Image rows per chunk: enough chunks for dynamic load balancing on a busy machine,
-// blocks tall enough that the block preconditioner keeps most couplings (the screened
-// Poisson Green's function decays over ~1/alpha = 5 pixels at the default alpha).
-constexpr int kChunkRows = 24;
-
-}  // namespace
 
 GridOperator::GridOperator(int width, int height)
     : m_w(width), m_h(height), m_chunk_rows(row_chunks(height, kChunkRows)) {

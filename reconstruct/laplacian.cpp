@@ -40,12 +40,6 @@ int resolve_threads(int threads) {
   return std::min(threads, std::max(hw, 1));
 }
 
-namespace {
-
-// Image rows per chunk (see grid_operator.cpp).
-constexpr int kChunkRows = 24;
-
-}  // namespace
 
 Laplacian::Laplacian(const Kernel& kernel) : m_kernel(kernel), m_chunk_rows(row_chunks(kernel.height(), kChunkRows)) {
   const size_t n = kernel.pixels();

@@ -91,4 +91,10 @@ CgStats pcg(const ChunkedOperator& A, const Vec4* rhs, Vec4* x, const CgSettings
 // each chunk plus `height` at the end.
 std::vector<int> row_chunks(int height, int rows);
 
+// Image rows per chunk of the Laplacian and the grid operator: enough chunks for dynamic
+// load balancing on a busy machine, blocks tall enough that the block preconditioner
+// keeps most couplings (the screened Poisson Green's function decays over ~1/alpha = 5
+// pixels at the default alpha).
+constexpr int kChunkRows = 24;
+
 }  // namespace dp::reconstruct

@@ -12,7 +12,8 @@
 # (the ../shared scenes must never be copied into the repository): reduce it to a minimal
 # hand-written input in tests/fuzz/regressions/<target>/ and commit that with the fix;
 # test_fuzz_regressions replays every file there in every build. fuzz/summary.txt gets
-# one line per target: executions, coverage (libFuzzer's cov and ft), findings.
+# one dated line per target and run (appended): executions, coverage (libFuzzer's cov and
+# ft), findings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:?usage: scripts/fuzz.sh SECONDS [TARGET ...]}
@@ -43,7 +44,7 @@ seed_files() {  # the seed corpus of target $1
 }
 
 mkdir -p fuzz
-: > fuzz/summary.txt
+# Appended, one dated line per target and run, so two runners (different targets) can share it.
 for t in "${targets[@]}"; do
   corpus=fuzz/corpus/$t artifacts=fuzz/artifacts/$t/ log=fuzz/$t.log
   mkdir -p "$corpus" "$artifacts" "fuzz/findings/$t"
@@ -68,6 +69,6 @@ for t in "${targets[@]}"; do
     for a in "$artifacts"*; do [ -f "$a" ] && mv "$a" "fuzz/findings/$t/"; done
     [ "$findings" -lt 20 ] || break
   done
-  printf '%s: %s s, %s executions, cov %s, ft %s, findings %s (log fuzz/%s.log)\n' \
-    "$t" "$secs" "$execs" "$cov" "$ft" "$findings" "$t" | tee -a fuzz/summary.txt
+  printf '%s %s: %s s, %s executions, cov %s, ft %s, findings %s (log fuzz/%s.log)\n' \
+    "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "$secs" "$execs" "$cov" "$ft" "$findings" "$t" | tee -a fuzz/summary.txt
 done

@@ -1,15 +1,13 @@
 #include "integrators/path/path_tracer.h"
 
+#include "pathspace/scatter.h"
+
 namespace dp::integrators {
 
 using scene::BsdfContext;
 using scene::SurfaceHit;
 
-// A direction is usable at a surface only if the geometric and shading normals agree
-// on its side (otherwise light would leak through shading-normal discontinuities).
-static bool consistent_side(const SurfaceHit& hit, const Vec3& w_world, float cos_shading) {
-  return hit.ng.dot(w_world) * cos_shading > 0.0f;
-}
+using pathspace::consistent_side;
 
 Rgb PathTracer::next_event(const SurfaceHit& hit, const Vec3& wi_local, const BsdfContext& ctx, core::Rng& rng,
                            PathCounters& counters) const {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
+#include "pathspace/scatter.h"
 #include "scene/media/free_flight.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
@@ -12,6 +13,7 @@ namespace dp::integrators {
 
 using scene::BsdfContext;
 using scene::SurfaceHit;
+using pathspace::consistent_side;
 
 void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.rays", rays);
@@ -27,12 +29,6 @@ void VolpathCounters::flush(core::Stats& stats) const {
 }
 
 namespace {
-
-// A direction is usable at a surface only if the geometric and shading normals agree on
-// its side (as in path_tracer.cpp).
-bool consistent_side(const SurfaceHit& hit, const Vec3& w_world, float cos_shading) {
-  return hit.ng.dot(w_world) * cos_shading > 0.0f;
-}
 
 // Russian roulette after rr_depth segments, survival min(0.95, max throughput component).
 bool survive(Rgb& beta, int depth, int rr_depth, core::Rng& rng, VolpathCounters& c) {
