@@ -1,5 +1,8 @@
 #include "gradients/volume_photon_reconnect.h"
 
+#include "pathspace/bidir_light.h"
+#include "scene/bsdf/bsdf.h"
+#include "scene/emitters/emitter.h"
 #include "scene/media/free_flight.h"
 #include "scene/media/phase_function.h"
 
@@ -25,6 +28,74 @@ Rgb photon_edge_throughput(const MediumParent& parent, const scene::HomogeneousM
   const float phase = scene::HenyeyGreenstein(medium.phase).eval(parent.w_in, d / t);
   // rho_p(a) tau(a, b) G(a, b) sigma_s(b) (Eqs. 2-4).
   return phase * scene::transmittance(medium, t) * medium.sigma_s / (fault == ReconnectFault::no_volume_factor ? 1.0f : t2);
+}
+
+const char* to_string(ParentKind kind) {
+  switch (kind) {
+    case ParentKind::crossing: return "crossing";
+    case ParentKind::medium: return "medium";
+    case ParentKind::surface: return "surface";
+    case ParentKind::light: return "light";
+    case ParentKind::specular: return "specular";
+    case ParentKind::light_infinite: return "light_infinite";
+  }
+  return "unknown";
+}
+
+bool photon_edge(const PhotonParent& parent, const scene::HomogeneousMedium& medium, const Vec3& x, Rgb& f, float& pdf,
+                 ReconnectFault fault) {
+  f = Rgb::Zero();
+  pdf = 0.0f;
+  if (parent.kind == ParentKind::medium) {
+    const MediumParent m{parent.a, parent.w};
+    f = photon_edge_throughput(m, medium, x, fault);
+    pdf = photon_volume_pdf(m, medium, x, fault);
+    return pdf > 0.0f && !is_black(f);
+  }
+  const Vec3 d = x - parent.a;
+  const float t2 = d.squaredNorm();
+  if (!(t2 > 0.0f)) return false;
+  const float t = std::sqrt(t2);
+  const Vec3 w = d / t;
+  Rgb rho = Rgb::Zero();  // rho(a; w): the direction factor at a (Eq. 3)
+  float p_dir = 0.0f;     // its sampling density, solid angle
+  if (parent.kind == ParentKind::surface) {
+    const Vec3 wi = parent.shading.to_local(parent.w), wo = parent.shading.to_local(w);
+    // The photon tracer's sidedness rule (geometric and shading normals agree on wo's side).
+    if (!(parent.ng.dot(w) * wo.z() > 0.0f)) return false;
+    const scene::BsdfContext ctx{parent.uv, scene::TransportMode::importance};
+    rho = parent.bsdf->eval_pdf(ctx, wi, wo, p_dir) * std::abs(wo.z());
+  } else if (parent.kind == ParentKind::light) {
+    pathspace::BidirVertex y0;
+    y0.kind = pathspace::BidirKind::light;
+    y0.emitter = parent.emitter;
+    y0.sp.p = parent.a;
+    y0.sp.ng = parent.ng;
+    y0.sp.shading = Frame::from_normal(parent.ng);
+    y0.sp.uv = parent.uv;
+    rho = pathspace::light_emit_cos(y0, w);  // Le cos (area), intensity (point, spot)
+    p_dir = pathspace::light_pdf_dir(y0, w);
+  } else {
+    return false;
+  }
+  if (!(p_dir > 0.0f) || is_black(rho)) return false;
+  const float g = fault == ReconnectFault::no_volume_factor ? 1.0f : 1.0f / t2;  // Eq. 4, no cosine at b
+  f = rho * scene::transmittance(medium, t) * medium.sigma_s * g;
+  pdf = p_dir * scene::free_flight_pdf(medium, t) * g;
+  return pdf > 0.0f && !is_black(f);
+}
+
+PhotonReconnection reconnect_photon(const PhotonParent& parent, const scene::HomogeneousMedium& medium, const Vec3& b,
+                                    const Vec3& b_offset, ReconnectFault fault) {
+  PhotonReconnection r;
+  Rgb fb, fo;
+  float pb = 0.0f, po = 0.0f;
+  if (!photon_edge(parent, medium, b, fb, pb, fault) || !photon_edge(parent, medium, b_offset, fo, po, fault)) return r;
+  for (int c = 0; c < 3; ++c) r.ratio[c] = fb[c] > 0.0f ? fo[c] / fb[c] : 0.0f;
+  r.pdf_ratio = double(po) / double(pb);
+  r.w = (b_offset - parent.a).normalized();
+  r.ok = !is_black(r.ratio) && r.pdf_ratio > 0.0 && std::isfinite(r.pdf_ratio) && is_finite(r.ratio);
+  return r;
 }
 
 }  // namespace dp::gradients
