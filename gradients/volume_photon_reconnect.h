@@ -29,6 +29,7 @@
 namespace dp::scene {
 class Bsdf;
 class Emitter;
+class Scene;
 }  // namespace dp::scene
 
 namespace dp::gradients {
@@ -55,10 +56,11 @@ Rgb photon_edge_throughput(const MediumParent& parent, const scene::HomogeneousM
 //   spot) -- reconnectable;
 //   specular (a Dirac lobe was sampled at a surface parent: needs a manifold walk, not
 //   built), light_infinite (environment/directional: the parent is at infinity),
-//   crossing (the last edge crossed an index-matched boundary: it is not one segment in
-//   one medium) -- the shift fails (counted; the same for base and offset, since the
-//   light prefix is not changed by the shift, so the symmetric MIS stays unbiased).
-enum class ParentKind : uint8_t { crossing, medium, surface, light, specular, light_infinite };
+//   none (no record: the light endpoint could not be re-drawn) -- the shift fails (counted; the same for base and offset, since the light prefix is
+//   not changed by the shift, so the symmetric MIS stays unbiased).
+// An edge may cross index-matched boundaries (straight, media switched):
+// reconnect_photon_edge() walks it (at most 16 crossings, else it counts as blocked).
+enum class ParentKind : uint8_t { none, medium, surface, light, specular, light_infinite };
 constexpr int kParentKindCount = 6;
 const char* to_string(ParentKind kind);
 
@@ -70,8 +72,14 @@ struct PhotonParent {
   Vec2 uv{0, 0};        // surface / area light
   const scene::Bsdf* bsdf = nullptr;
   const scene::Emitter* emitter = nullptr;
-  ParentKind kind = ParentKind::crossing;
+  int medium = -1;      // the medium the edge leaves a into (-1: vacuum)
+  ParentKind kind = ParentKind::none;
 };
+
+// rho(a; w) and its solid-angle sampling density p_dir(a; w) (the header's terms) for a
+// reconnectable parent; false where w is impossible (back side of a surface or an area
+// light).
+bool parent_direction(const PhotonParent& parent, const Vec3& w, Rgb& rho, float& p_dir);
 
 // f(a -> x) and p(x | a) in the volume measure (the header's formulas) for a reconnectable
 // parent in medium `medium`; false (f = 0, p = 0) where the direction a -> x is not
@@ -91,6 +99,17 @@ struct PhotonReconnection {
 };
 PhotonReconnection reconnect_photon(const PhotonParent& parent, const scene::HomogeneousMedium& medium, const Vec3& b,
                                     const Vec3& b_offset, ReconnectFault fault = ReconnectFault::none);
+
+// The same through the scene (what the integrator uses): the edges a -> b and a -> b' are
+// walked through index-matched boundaries as the photon tracer crosses them (straight;
+// each medium segment before the last contributes Tr to f and the free-flight pass
+// probability P(pass) to p, vacuum 1; the last segment Tr(t_last) sigma_s and
+// p_ff(t_last), in the photon's medium), with G = 1 / t^2 over the whole distance.
+// Fails (ok false, `blocked` true) if a surface that is not an index-matched boundary
+// lies on a -> b' (visibility), or b' is in another medium than `photon_medium`.
+PhotonReconnection reconnect_photon_edge(const scene::Scene& scene, const PhotonParent& parent, int photon_medium,
+                                         const Vec3& b, const Vec3& b_offset, bool& blocked,
+                                         ReconnectFault fault = ReconnectFault::none);
 
 // t^2 / t'^2: the reconnection's Jacobian in the parent's (direction, distance) coordinates.
 inline double reconnection_jacobian(const Vec3d& a, const Vec3d& b, const Vec3d& b_offset) {

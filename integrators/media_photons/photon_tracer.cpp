@@ -74,6 +74,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
   // The medium the light sits in: the near side of the first surface if it is a boundary.
   int medium = found ? scene::medium_toward(hit, -ray.d, cam_medium, cam_medium) : cam_medium;
   int nulls = 0;
+  parent.medium = medium;
   // Russian roulette after the bounce that makes segment s (relative to the emitted power).
   auto survive = [&](int segment) {
     if (segment <= params.rr_depth) return true;
@@ -106,6 +107,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
           parent.kind = ParentKind::medium;
           parent.a = p;
           parent.w = ray.d;
+          parent.medium = medium;
         }
         if (s == max_store) return;
         ray.o = p;
@@ -124,7 +126,6 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         ++c.null_limit;
         return;
       }
-      parent.kind = ParentKind::crossing;  // the next photon's edge is not one segment
       medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
       ray = scene.continue_ray(hit, ray.d);  // the one continuation rule (scene/scene.h)
       found = scene.trace_from(hit, ray.d, hit);
@@ -153,6 +154,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       parent.bsdf = hit.bsdf;
     }
     medium = scene::medium_toward(hit, wo, medium, cam_medium);
+    if (parents) parent.medium = medium;
     if (!survive(++s)) return;
     ray = scene.continue_ray(hit, wo);
     found = scene.trace_from(hit, wo, hit);
