@@ -165,6 +165,13 @@ PhotonReconnection reconnect_photon_edge(const scene::Scene& scene, const Photon
   blocked = false;
   Rgb fb, fo;
   float pb = 0.0f, po = 0.0f;
+  // A surface parent's medium is that of the side the base photon left into: an offset
+  // on the other side (reflection <-> transmission) would start in an unknown medium.
+  if (parent.kind == ParentKind::surface &&
+      (parent.ng.dot(b - parent.a) > 0.0f) != (parent.ng.dot(b_offset - parent.a) > 0.0f)) {
+    blocked = true;
+    return r;
+  }
   bool base_blocked = false;
   if (!walked_edge(scene, parent, photon_medium, b, fb, pb, base_blocked, fault)) return r;  // numerically lost: zero
   if (!walked_edge(scene, parent, photon_medium, b_offset, fo, po, blocked, fault)) return r;

@@ -106,7 +106,8 @@ PhotonReconnection reconnect_photon(const PhotonParent& parent, const scene::Hom
 // probability P(pass) to p, vacuum 1; the last segment Tr(t_last) sigma_s and
 // p_ff(t_last), in the photon's medium), with G = 1 / t^2 over the whole distance.
 // Fails (ok false, `blocked` true) if a surface that is not an index-matched boundary
-// lies on a -> b' (visibility), or b' is in another medium than `photon_medium`.
+// lies on a -> b' (visibility), b' is in another medium than `photon_medium`, or b' lies
+// on the other side of a surface parent than b (its medium there is not recorded).
 PhotonReconnection reconnect_photon_edge(const scene::Scene& scene, const PhotonParent& parent, int photon_medium,
                                          const Vec3& b, const Vec3& b_offset, bool& blocked,
                                          ReconnectFault fault = ReconnectFault::none);
