@@ -12,9 +12,10 @@
 //        not longer than t (Fig. 3; checked in both directions, so symmetric);
 //      photon (Sec. 4.2): the mixed shift of Eq. 16 (or the simple one), Jacobian 1;
 //      reconnection (Sec. 4.3): a shifted photon is reconnected to its parent
-//        (gradients/volume_photon_reconnect.h; medium, surface and finite-light parents;
-//        specular parents, parents at infinity and edges through boundaries fail,
-//        counted), visibility by Scene::occluded;
+//        (gradients/volume_photon_reconnect.h, reconnect_photon_edge: medium, smooth-
+//        surface and finite-light parents, the edge walked through index-matched
+//        boundaries, any other surface blocks it; specular parents -- no manifold walk
+//        yet -- and parents at infinity fail, counted);
 //    offset value f(Tx)|T'|/p(x) = beta'_k Tr(t) rho_p(w_b', -w') beta_b ratio K / (N M p(t)),
 //    MIS (Eq. 19, balance heuristic) w = 1 / (1 + R), R = p'(t) / p(t) (Eq. 14 on the
 //    offset segment) x p(b' | a) / p(b | a) (1 for a null shift); a failed shift is the
