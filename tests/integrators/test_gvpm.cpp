@@ -10,8 +10,8 @@
 //    here: a reconnected photon's weight changes with t^2/t'^2 and Tr, only the null shift
 //    would leave base and offset equal, and at these radii the kernels do not overlap.
 //    Measured: worst excess/(z se) 0.63, primal vs vpm |t|/crit 0.56; with kernels 4x as
-//    wide (r > the gather points' offset: 3.7M null and 3.0M reflected mixed shifts over
-//    the runs) 0.77 and 0.12.
+//    wide (r > the gather points' offset: 0.92M null and 0.76M reflected mixed shifts
+//    over the runs) 0.63 and 0.13.
 //    Planted defects, rejected: the offset's gather density without Eq. 14's truncation
 //    (MIS weights no longer sum to 1): primal vs vpm |t|/crit 1.43; MIS weight 1 on both
 //    sides of a pair (Eq. 19 left out): 8.49 (recon_l2 excess/(z se) 7.70);
@@ -25,7 +25,9 @@
 //    without the volume measure's 1/t^2 (ReconnectFault::no_volume_factor; blocks 1.80);
 //  * without media: no photon traced, every sample's light in `direct`, gradients 0
 //    (counters); with media the image depends on the seed only (1 vs 2 threads) and 3
-//    parts' raw buffers add up to the whole render's.
+//    parts' raw buffers add up to the whole render's; the photon tracer's photons are
+//    bit-identical with and without parent records (vpm/bre do not record them), and the
+//    media box has light, surface, medium and specular parents.
 #include <boost/math/distributions/normal.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -34,6 +36,7 @@
 #include "core/rng.h"
 #include "integrators/gvpm/gvpm_integrator.h"
 #include "integrators/integrator.h"
+#include "integrators/media_photons/photon_tracer.h"
 #include "integrators/vpm/vpm_integrator.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
@@ -133,11 +136,11 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
   // 9 statistics (recon_l2, dx, dy x 3 channels) at 1% family-wise (Sidak), two-sided.
   const double z = boost::math::quantile(boost::math::normal(), 1.0 - (1.0 - std::pow(0.99, 1.0 / 9.0)) / 2.0);
   // vpm at the same settings: gvpm's primal estimates the same (kernel-biased) expectation.
-  auto vpm_runs = [&](double radius_scale) {
+  auto vpm_runs = [&](double radius_scale, int photons) {
     Runs runs;
     for (int k = 0; k < kRuns; ++k) {
       integrators::VpmSettings v;
-      v.photons = Config{}.photons;
+      v.photons = photons;
       v.radius_scale = radius_scale;
       v.radius_alpha = Config{}.radius_alpha;
       v.distance_samples = Config{}.distance_samples;
@@ -147,7 +150,7 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
     }
     return runs;
   };
-  const Runs vpm_default = vpm_runs(Config{}.radius_scale);
+  const Runs vpm_default = vpm_runs(Config{}.radius_scale, Config{}.photons);
   auto check = [&](const Config& c, bool expect_pass) {
     const double shell = shell_length(*s, c.radius_scale * diag);
     Runs runs, primal;
@@ -180,7 +183,7 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
                   int(c.fault), i < 3 ? "recon_l2" : i < 6 ? "dx" : "dy", ch, m.mean, expect, bound, se, excess);
     }
     const double vs_vpm =
-        test::sidak_welch(primal, c.radius_scale == Config{}.radius_scale ? vpm_default : vpm_runs(c.radius_scale), 0.01);
+        test::sidak_welch(primal, c.radius_scale == Config{}.radius_scale ? vpm_default : vpm_runs(c.radius_scale, c.photons), 0.01);
     std::printf("[gvpm furnace] fault %d: primal vs vpm worst |t|/crit %.2f; pairs shifted %lld, reconnections %lld, null "
                 "shifts %lld, reflected %lld; worst excess/(se z) %.2f (z %.2f)\n",
                 int(c.fault), vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
@@ -196,6 +199,7 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
   {  // kernels wider than a pixel's offset: null and reflected (mixed) shifts occur
     Config wide;
     wide.radius_scale = 0.04;
+    wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
     check(wide, true);
   }
   for (auto f : {GvpmFault::untruncated_offset_pdf, GvpmFault::mis_weight_one}) {
@@ -317,6 +321,36 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
     CHECK(r.min_spp == 3);
   }
   const auto s = test::media_box(true, 16);
+  {  // parent records do not change the photons (planted defect: the record drawn from the
+     // path's own stream instead of a copy: the photon count differs, REQUIRE fails)
+    integrators::PhotonTraceParams tp;
+    tp.paths = 9000;
+    tp.max_depth = kBoxDepth;
+    tp.seed = 5;
+    tp.threads = 2;
+    std::vector<integrators::MediumPhoton> plain, recorded;
+    std::vector<gradients::PhotonParent> parents;
+    integrators::PhotonTraceCounters c1, c2;
+    REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, plain, c1));
+    REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, recorded, c2, &parents));
+    REQUIRE(plain.size() == recorded.size());
+    REQUIRE(parents.size() == recorded.size());
+    bool same = !plain.empty();
+    int64_t kinds[gradients::kParentKindCount] = {};
+    for (size_t i = 0; i < plain.size(); ++i) {
+      same = same && plain[i].p == recorded[i].p && (plain[i].beta == recorded[i].beta).all() &&
+             recorded[i].index == uint32_t(i);
+      ++kinds[int(parents[i].kind)];
+    }
+    CHECK(same);
+    // The box has all kinds of parents but the infinite light: area light, walls, the
+    // glass ball (specular), the smoke and the fog.
+    CHECK(kinds[int(gradients::ParentKind::light)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::surface)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::medium)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::specular)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::none)] == 0);
+  }
   Config c;
   c.photons = 9000;  // three photon chunks
   c.radius_scale = 0.02;
