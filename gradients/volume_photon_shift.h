@@ -40,6 +40,29 @@ struct PhotonShift {
 // its factor 2 (a projection onto the plane: not invertible).
 enum class PhotonShiftFault : uint8_t { none, half_reflection };
 
+// Eq. 16's mixed shift, generic in the vector type (Vec3 for the renderer, Vec3d for the
+// tests' finite differences): writes b' into `out`, returns the branch taken.
+template <class V, class S>
+PhotonShiftKind mixed_photon_shift_t(const V& b, const V& d, const V& d_offset, S r, V& out,
+                                     PhotonShiftFault fault = PhotonShiftFault::none) {
+  const S r2 = r * r;
+  if ((b - d_offset).squaredNorm() <= r2) {  // in both kernels: the null shift
+    out = b;
+    return PhotonShiftKind::null;
+  }
+  const V delta = d_offset - d;
+  const V b_star = b + delta;  // the simple shift
+  if ((b_star - d).squaredNorm() > r2) {
+    out = b_star;
+    return PhotonShiftKind::simple;
+  }
+  // b* fell into the overlap: reflect it across the plane through d' normal to u (Eq. 16).
+  const V u = delta.normalized();
+  const S k = fault == PhotonShiftFault::half_reflection ? S(1) : S(2);
+  out = b_star + k * u.dot(d_offset - b_star) * u;
+  return PhotonShiftKind::reflected;
+}
+
 // Eq. 16's mixed shift of base photon b (|b - d| <= r) from gather point d to d'.
 PhotonShift mixed_photon_shift(const Vec3& b, const Vec3& d, const Vec3& d_offset, float r,
                                PhotonShiftFault fault = PhotonShiftFault::none);

@@ -6,6 +6,7 @@
 #include "core/thread_pool.h"
 #include "integrators/volpath/volpath_tracer.h"  // kMaxNullCrossings
 #include "pathspace/bidir_subpath.h"
+#include "scene/emitters/emitter.h"
 #include "scene/media/free_flight.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
@@ -37,11 +38,33 @@ namespace {
 
 constexpr int64_t kChunk = 4096;  // light paths per work item (and random stream)
 
+using gradients::ParentKind;
+using gradients::PhotonParent;
+
+// The light endpoint as emit_light_ray drew it from `rng` (a copy taken before the draw).
+PhotonParent light_parent(const scene::Scene& scene, core::Rng rng, std::vector<pathspace::BidirVertex>& scratch) {
+  PhotonParent parent;
+  pathspace::SubpathParams one;
+  one.max_vertices = 1;
+  pathspace::light_subpath(scene, one, rng, scratch);
+  if (scratch.empty()) return parent;
+  const pathspace::BidirVertex& y0 = scratch[0];
+  parent.a = y0.sp.p;
+  parent.ng = y0.sp.ng;
+  parent.uv = y0.sp.uv;
+  parent.emitter = y0.emitter;
+  parent.kind = y0.emitter && !y0.emitter->is_infinite() ? ParentKind::light : ParentKind::light_infinite;
+  return parent;
+}
+
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
-               std::vector<MediumPhoton>& out, PhotonTraceCounters& c) {
+               std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
+               std::vector<pathspace::BidirVertex>& scratch) {
   ++c.paths;
   Ray ray;
   Rgb beta;
+  PhotonParent parent;
+  if (parents) parent = light_parent(scene, rng, scratch);
   if (!pathspace::emit_light_ray(scene, rng, ray, beta)) return;
   const float beta0 = max_component(beta);
   const int cam_medium = scene.camera_medium();
@@ -51,6 +74,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
   // The medium the light sits in: the near side of the first surface if it is a boundary.
   int medium = found ? scene::medium_toward(hit, -ray.d, cam_medium, cam_medium) : cam_medium;
   int nulls = 0;
+  parent.medium = medium;
   // Russian roulette after the bounce that makes segment s (relative to the emitted power).
   auto survive = [&](int segment) {
     if (segment <= params.rr_depth) return true;
@@ -75,8 +99,16 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
           ++c.nan_dropped;
           return;
         }
-        out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium)});
+        out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium), uint32_t(out.size())});
         ++c.stored;
+        if (parents) {
+          parents->push_back(parent);
+          parent = PhotonParent{};
+          parent.kind = ParentKind::medium;
+          parent.a = p;
+          parent.w = ray.d;
+          parent.medium = medium;
+        }
         if (s == max_store) return;
         ray.o = p;
         ray.d = scene::HenyeyGreenstein(med.phase).sample(ray.d, rng.uniform2());  // weight rho_p / pdf = 1
@@ -111,7 +143,18 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
     const Vec3 wo = hit.shading.to_world(bs->wo);
     if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) return;
     beta *= bs->weight;
+    if (parents) {
+      parent = PhotonParent{};
+      parent.kind = bs->is_delta() ? ParentKind::specular : ParentKind::surface;
+      parent.a = hit.p;
+      parent.w = -ray.d;
+      parent.ng = hit.ng;
+      parent.shading = hit.shading;
+      parent.uv = hit.uv;
+      parent.bsdf = hit.bsdf;
+    }
     medium = scene::medium_toward(hit, wo, medium, cam_medium);
+    if (parents) parent.medium = medium;
     if (!survive(++s)) return;
     ray = scene.continue_ray(hit, wo);
     found = scene.trace_from(hit, wo, hit);
@@ -121,9 +164,11 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
 }  // namespace
 
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
-                          std::vector<MediumPhoton>& out, PhotonTraceCounters& counters) {
+                          std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
+                          std::vector<PhotonParent>* parents) {
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
+  std::vector<std::vector<PhotonParent>> parent_parts(parents ? static_cast<size_t>(chunks) : 0);
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
   core::parallel_for(
@@ -131,7 +176,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
       [&](int64_t k, int) {
         core::Rng rng(params.seed, (uint64_t(params.iteration) << 32) | 0x40000000ull | uint64_t(k));
         const int64_t n = std::min(kChunk, params.paths - k * kChunk);
-        for (int64_t i = 0; i < n; ++i) trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)]);
+        std::vector<pathspace::BidirVertex> scratch;
+        std::vector<PhotonParent>* pp = parents ? &parent_parts[size_t(k)] : nullptr;
+        for (int64_t i = 0; i < n; ++i)
+          trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch);
         done[size_t(k)] = 1;
       },
       stop);
@@ -140,8 +188,15 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
   for (const auto& p : parts) total += p.size();
   out.clear();
   out.reserve(total);
+  if (parents) {
+    parents->clear();
+    parents->reserve(total);
+  }
   for (size_t k = 0; k < parts.size(); ++k) {
+    const uint32_t offset = uint32_t(out.size());
+    for (MediumPhoton& ph : parts[k]) ph.index += offset;  // chunk-local -> global
     out.insert(out.end(), parts[k].begin(), parts[k].end());
+    if (parents) parents->insert(parents->end(), parent_parts[k].begin(), parent_parts[k].end());
     counters += chunk_counters[k];
   }
   return true;

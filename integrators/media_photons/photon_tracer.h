@@ -22,6 +22,13 @@
 //    depth >= max_depth are never stored.
 // Deterministic: paths are traced in fixed chunks, each with its own stream (seed,
 // iteration, chunk), and listed in chunk order.
+//  * Parent records (G-VPM, docs/gvpm_plan.md step 4; only when asked for: `vpm`/`bre`
+//    do not pay for them): each photon's parent y_{s-1} (light, surface or medium vertex,
+//    and whether the photon can be reconnected to it: gradients::PhotonParent) in a
+//    separate array indexed by MediumPhoton::index (the BVH reorders the photons). The
+//    light endpoint is re-drawn from a copy of the path's stream by
+//    pathspace::light_subpath, which draws exactly as emit_light_ray does, so the photons
+//    and their weights are bit-identical with and without records.
 #pragma once
 
 #include <atomic>
@@ -30,6 +37,7 @@
 
 #include "core/math.h"
 #include "core/stats.h"
+#include "gradients/volume_photon_reconnect.h"
 #include "scene/scene.h"
 
 namespace dp::integrators {
@@ -40,6 +48,7 @@ struct MediumPhoton {
   Rgb beta = Rgb::Zero();  // throughput per emitted path (sigma_s at p included)
   int16_t depth = 0;       // segments from the light
   int16_t medium = -1;     // index into Scene::media()
+  uint32_t index = 0;      // position in the traced order (the parent records' index)
 };
 
 struct PhotonTraceCounters {
@@ -59,7 +68,9 @@ struct PhotonTraceParams {
 };
 
 // Traces params.paths light paths into `out` (cleared); false if `stop` interrupted it.
+// With `parents`, (*parents)[photon.index] is each photon's parent record.
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
-                          std::vector<MediumPhoton>& out, PhotonTraceCounters& counters);
+                          std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
+                          std::vector<gradients::PhotonParent>* parents = nullptr);
 
 }  // namespace dp::integrators

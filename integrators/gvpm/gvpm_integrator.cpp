@@ -1,0 +1,134 @@
+#include "integrators/gvpm/gvpm_integrator.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "core/progress.h"
+#include "core/thread_pool.h"
+#include "core/timer.h"
+#include "integrators/gradient_passes.h"
+#include "integrators/gvpm/gvpm_tracer.h"
+#include "integrators/media_photons/media_photon_render.h"
+#include "integrators/media_photons/volume_kernel.h"
+#include "integrators/tile_scheduler.h"
+#include "integrators/vpm/vpm_gather.h"
+
+namespace dp::integrators {
+
+RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
+  // The iteration loop of media_photon_render.cpp with gradient buffers (as photon_iterations.cpp).
+  const auto& cam = scene.camera();
+  const int w = cam.width(), h = cam.height();
+  const int threads = resolve_threads(options);
+  const bool timed = options.time_budget > 0;
+  const bool media = scene.caps().has_media;
+  const int64_t parts = std::max(1, options.parts), part = options.part;
+  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
+  const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
+  const int64_t tiles = int64_t(tiles_x) * tiles_y;
+  const double r1 = initial_media_radius(scene, m_settings);
+  VpmSettings vpm;  // the gathers of the unshifted camera segments (after the first surface)
+  static_cast<MediaPhotonSettings&>(vpm) = m_settings;
+  vpm.distance_samples = m_settings.distance_samples;
+
+  GradientPasses passes;
+  passes.total = gradients::GradientBuffers(w, h);
+  std::vector<core::Stats> thread_stats(static_cast<size_t>(threads)), iter_stats(static_cast<size_t>(threads));
+  std::vector<gradients::GradientBuffers> buffers(static_cast<size_t>(threads), gradients::GradientBuffers(w, h));
+  std::vector<GvpmScratch> scratch(static_cast<size_t>(threads));
+  std::vector<gradients::PhotonParent> parents;
+  PhotonTraceCounters photon_counters;
+  PhotonBvh bvh;
+  core::Timer timer;
+  core::Progress progress("gvpm", timed ? 1000 : target, options.quiet);
+  int64_t done = 0;
+  double radius = r1;
+  while (timed ? timer.seconds() < options.time_budget : done < target) {
+    if (options.stop && options.stop->load()) {
+      passes.partial = true;
+      break;
+    }
+    const int64_t global = part + done * parts;
+    const float r = float(progressive_radius(r1, global, m_settings.radius_alpha, 3));
+    PhotonTraceCounters pc;
+    std::unique_ptr<VpmGather> later;
+    if (media) {  // no photon is traced for a scene without media
+      PhotonTraceParams tp;
+      tp.paths = m_settings.photons;
+      tp.max_depth = options.max_depth;
+      tp.rr_depth = m_settings.rr_depth;
+      tp.seed = options.seed;
+      tp.iteration = global;
+      tp.threads = threads;
+      std::vector<MediumPhoton> photons;
+      if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents)) {
+        passes.partial = true;
+        break;
+      }
+      bvh.build(std::move(photons));
+      later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
+    }
+    const GvpmTracer tracer(scene, m_settings, options.max_depth, media ? &bvh : nullptr, media ? &parents : nullptr, r,
+                            media ? int64_t(m_settings.photons) : 0, later.get());
+    for (auto& s : iter_stats) s = core::Stats{};
+    std::vector<char> tile_done(static_cast<size_t>(tiles), 0);
+    core::parallel_for(
+        tiles, threads,
+        [&](int64_t ti, int thread) {
+          const int x0 = int(ti % tiles_x) * kTileSize, y0 = int(ti / tiles_x) * kTileSize;
+          core::Rng rng(options.seed, (uint64_t(global) << 32) | 0x60000000ull | uint64_t(ti));
+          GvpmCounters counters;
+          for (int y = y0; y < std::min(h, y0 + kTileSize); ++y)
+            for (int x = x0; x < std::min(w, x0 + kTileSize); ++x)
+              tracer.sample(x, y, rng, scratch[size_t(thread)], buffers[size_t(thread)], counters);
+          counters.flush(iter_stats[size_t(thread)]);
+          tile_done[size_t(ti)] = 1;
+        },
+        options.stop);
+    bvh.release();
+    const bool complete = std::find(tile_done.begin(), tile_done.end(), 0) == tile_done.end();
+    for (size_t t = 0; t < buffers.size(); ++t) {
+      if (complete) {
+        passes.total.merge(buffers[t]);
+        thread_stats[t].merge(iter_stats[t]);
+      }
+      buffers[t].clear();
+    }
+    if (!complete) {  // an interrupted iteration is dropped whole
+      passes.partial = true;
+      break;
+    }
+    photon_counters += pc;
+    radius = r;
+    ++done;
+    if (timed) progress.set_fraction(std::min(1.0, timer.seconds() / options.time_budget));
+    else progress.advance();
+  }
+  progress.finish();
+  passes.passes = passes.kept = done;
+  passes.partial = passes.partial || (!timed && done < target);
+  passes.render_seconds = timer.seconds();
+
+  core::Json settings = m_json;
+  RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
+                                    : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction,
+                                                      threads, settings);
+  photon_counters.flush(result.stats, "gvpm");
+  result.stats.add("gvpm.iterations", done);
+  if (!media) result.stats.add("gvpm.photon_passes_skipped", done);
+  result.info["media"] = media;
+  result.info["kernel_dimension"] = 3;
+  result.info["radius_initial"] = r1;
+  result.info["radius_final"] = radius;
+  result.info["photons_per_iteration"] = m_settings.photons;
+  result.info["distance_samples"] = m_settings.distance_samples;
+  result.info["mixed_shift"] = m_settings.mixed;
+  result.wall_seconds = timer.seconds();
+  return result;
+}
+
+RenderResult GvpmIntegrator::finish(const core::RawImage& raw, const RenderOptions& options) const {
+  return gradient_finish(raw, options, m_settings.alpha, m_settings.reconstruction, m_json);
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,37 @@
+// `--integrator gvpm`: gradient-domain volumetric photon mapping (G-VPM; Gruson et al.
+// 2018, Sec. 4; docs/gvpm_plan.md), on the primal `vpm`: per iteration `photons` light
+// paths through the media with parent records (media_photons/photon_tracer.h), a photon
+// BVH and the progressive 3D radius (as vpm), then one camera sample per pixel
+// (gvpm_tracer.h): the primary ray's medium gathers shifted to the four neighbours
+// (camera copy t' = t, mixed photon shift, reconnection to the photon's parent, Eq. 19's
+// MIS), the rest of vpm's camera path in the unshifted `direct` layer. Output layers as
+// `gpt`: "" (the reconstruction chosen by `reconstruction`, default L1), recon_l1,
+// recon_l2, primal, dx, dy, direct; alpha 0.2 (Sec. 6.1). `--spp` = iterations, `--time`
+// whole iterations (an interrupted one is dropped), `--partial`/`--mpi`: part k of n
+// runs the global iterations k, k + n, ... Without media no photon is traced and the
+// camera paths run vpm's media-free variant (gvpm.photon_passes_skipped,
+// gvpm.media_skipped; every gradient is then the T_0 fallback of nothing: 0, all in
+// `direct`). Counters `gvpm.*` (gvpm_tracer.h).
+#pragma once
+
+#include "core/json.h"
+#include "integrators/gvpm/gvpm_settings.h"
+#include "integrators/integrator.h"
+
+namespace dp::integrators {
+
+class GvpmIntegrator final : public Integrator {
+ public:
+  explicit GvpmIntegrator(Settings& settings) : m_settings(GvpmSettings::read(settings)), m_json(settings.to_json()) {}
+  explicit GvpmIntegrator(const GvpmSettings& settings, core::Json json = {}) : m_settings(settings), m_json(std::move(json)) {}
+  std::string name() const override { return "gvpm"; }
+  RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
+  bool supports_raw() const override { return true; }
+  RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
+
+ private:
+  GvpmSettings m_settings;
+  core::Json m_json;
+};
+
+}  // namespace dp::integrators

@@ -1,0 +1,282 @@
+#include "integrators/gvpm/gvpm_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gradients/volume_photon_shift.h"
+#include "integrators/media_photons/volume_kernel.h"
+#include "integrators/volpath/volpath_tracer.h"  // kMaxNullCrossings
+#include "integrators/vpm/vpm_gather.h"          // sample_truncated_distance, truncated_distance_pdf
+#include "scene/media/free_flight.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
+
+namespace dp::integrators {
+
+using gradients::ParentKind;
+using gradients::PhotonShiftKind;
+
+void GvpmCounters::flush(core::Stats& stats) const {
+  camera.flush(stats, "gvpm");
+  stats.add("gvpm.samples", samples);
+  stats.add("gvpm.nan_dropped", nan_dropped);
+  stats.add("gvpm.direct_paths", direct_paths);
+  stats.add("gvpm.primary_segments", primary_segments);
+  stats.add("gvpm.gather_points", gather_points);
+  stats.add("gvpm.photons_gathered_primary", photons_gathered);
+  stats.add("gvpm.photons_depth_skipped_primary", depth_skipped);
+  stats.add("gvpm.empty_segments_primary", empty_segments);
+  stats.add("gvpm.shift.attempted", shifts);
+  stats.add("gvpm.shift.null", shift_null);
+  stats.add("gvpm.shift.simple", shift_simple);
+  stats.add("gvpm.shift.reflected", shift_reflected);
+  stats.add("gvpm.shift.reconnections", reconnections);
+  stats.add("gvpm.shift.fail.segment_missing", fail_segment_missing);
+  stats.add("gvpm.shift.fail.medium", fail_medium);
+  stats.add("gvpm.shift.fail.distance", fail_distance);
+  stats.add("gvpm.shift.fail.occluded", fail_occluded);
+  stats.add("gvpm.shift.fail.zero_contribution", fail_zero);
+  for (int k = 0; k < gradients::kParentKindCount; ++k) {
+    const auto kind = ParentKind(k);
+    if (kind == ParentKind::medium || kind == ParentKind::surface || kind == ParentKind::light) continue;
+    stats.add(std::string("gvpm.shift.fail.parent_") + gradients::to_string(kind), fail_parent[size_t(k)]);
+  }
+  stats.add("gvpm.pairs.shifted", pairs_shifted);
+  stats.add("gvpm.pairs.fallback", pairs_fallback);
+  stats.add("gvpm.pairs.outside_image", outside_image);
+}
+
+namespace {
+
+// vpm's gather for every camera segment except the primary ray's (those have the full
+// path-length budget max_depth - 1 and are gathered and shifted by GvpmTracer).
+class LaterSegments final : public MediumGather {
+ public:
+  LaterSegments(const MediumGather* inner, int primary_budget) : m_inner(inner), m_primary(primary_budget) {}
+  Rgb gather(const Ray& ray, float seg_len, int medium, int max_photon_depth, core::Rng& rng,
+             GatherCounters& counters) const override {
+    if (max_photon_depth == m_primary || !m_inner) return Rgb::Zero();
+    return m_inner->gather(ray, seg_len, medium, max_photon_depth, rng, counters);
+  }
+
+ private:
+  const MediumGather* m_inner;
+  int m_primary;
+};
+
+}  // namespace
+
+GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
+                       const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
+                       const MediumGather* later)
+    : m_scene(scene),
+      m_settings(settings),
+      m_max_depth(max_depth),
+      m_photons(photons),
+      m_parents(parents),
+      m_radius(radius),
+      m_scale(light_paths > 0 ? uniform_kernel(3, double(radius)) / (double(light_paths) * settings.distance_samples) : 0.0),
+      m_later(later),
+      m_camera(scene, settings.rr_depth, max_depth) {}
+
+void GvpmTracer::primary_segments(const Ray& primary, std::vector<GvpmSegment>& out) const {
+  // As MediaCameraTracer walks the primary ray: segments in media until the first surface
+  // that is not an index-matched boundary.
+  out.clear();
+  const int cam_medium = m_scene.camera_medium();
+  int medium = cam_medium, nulls = 0;
+  Ray ray = primary;
+  Rgb beta = Rgb::Ones();
+  scene::SurfaceHit hit;
+  bool from_surface = false;
+  for (;;) {
+    const bool found = from_surface ? m_scene.trace_from(hit, ray.d, hit) : m_scene.intersect(ray, hit);
+    if (medium >= 0) {
+      const float seg = found ? hit.t : kInfinity;
+      out.push_back({ray, seg, medium, beta});
+      beta *= scene::transmittance(m_scene.media()[size_t(medium)], seg);
+      if (is_black(beta)) return;
+    }
+    if (!found || !scene::is_index_matched(hit) || ++nulls > VolpathTracer::kMaxNullCrossings) return;
+    medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
+    ray = m_scene.continue_ray(hit, ray.d);
+    from_surface = true;
+  }
+}
+
+float GvpmTracer::distance_pdf(const scene::HomogeneousMedium& m, float len, float t, bool truncated) const {
+  // vpm_gather.cpp's mixture over the channels whose truncated exponential is a density.
+  const Rgb st = m.sigma_t();
+  float p = 0.0f;
+  int n = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (!(st[c] > 0.0f || std::isfinite(len))) continue;
+    ++n;
+    p += truncated ? truncated_distance_pdf(st[c], len, t) : st[c] * std::exp(-st[c] * t);
+  }
+  return n > 0 ? p / float(n) : 0.0f;
+}
+
+void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
+  const int budget = m_max_depth - 1;
+  if (budget < 1 || !m_photons || m_photons->empty() || !(seg.len > 0.0f)) return;
+  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
+  const Rgb st = med.sigma_t();
+  int channels[3], n_ch = 0;
+  for (int c = 0; c < 3; ++c)
+    if (st[c] > 0.0f || std::isfinite(seg.len)) channels[n_ch++] = c;
+  if (n_ch == 0 || is_black(med.sigma_s)) {
+    ++counters.empty_segments;
+    return;
+  }
+  const scene::HenyeyGreenstein phase(med.phase);
+  const Vec3 to_camera = -seg.ray.d;
+  const int m = m_settings.distance_samples;
+  for (int j = 0; j < m; ++j) {  // as VpmGather::gather
+    const int c = channels[std::min(int(rng.uniform() * float(n_ch)), n_ch - 1)];
+    const float u = (float(j) + rng.uniform()) / float(m);
+    const float t = std::min(sample_truncated_distance(st[c], seg.len, u), seg.len);
+    const float p = distance_pdf(med, seg.len, t, true);
+    if (!(p > 0.0f) || !std::isfinite(t)) continue;
+    GvpmGatherPoint gp;
+    gp.segment = k;
+    gp.t = t;
+    gp.pdf = p;
+    gp.d = seg.ray.at(t);
+    gp.first = uint32_t(sc.terms.size());
+    ++counters.gather_points;
+    // Camera side of Eq. 5: beta_k Tr(t) / p(t), with K3 / (N M).
+    const Rgb cam = seg.beta * scene::transmittance(med, t) * float(m_scale / double(p));
+    m_photons->query_point(gp.d, m_radius, [&](const MediumPhoton& ph, float) {
+      if (ph.medium != seg.medium) return;
+      if (ph.depth > budget) {
+        ++counters.depth_skipped;
+        return;
+      }
+      const Rgb v = cam * phase.eval(ph.w, to_camera) * ph.beta;  // rho_p at the merged vertex (Eq. 3)
+      if (is_black(v)) return;
+      ++counters.photons_gathered;
+      sc.terms.push_back({&ph, v});
+    });
+    gp.count = uint32_t(sc.terms.size()) - gp.first;
+    if (gp.count > 0) sc.points.push_back(gp);
+  }
+}
+
+void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradients::GradientBuffers& buf,
+                        GvpmCounters& counters) const {
+  ++counters.samples;
+  const auto& cam = m_scene.camera();
+  const Vec2 raster(float(px) + rng.uniform(), float(py) + rng.uniform());
+  const Ray primary = cam.generate_ray(raster);
+  sc.splats.clear();
+  sc.splats.pair_primal = true;
+  sc.terms.clear();
+  sc.points.clear();
+  // The unshifted part: vpm's camera path without the primary ray's gathers.
+  const LaterSegments later(m_later, m_max_depth - 1);
+  const Rgb direct = m_camera.radiance(primary, m_later ? &later : nullptr, rng, counters.camera);
+  if (!is_black(direct) || !is_finite(direct)) {
+    sc.splats.add(px, py, 1, direct.cast<double>());
+    ++counters.direct_paths;
+  }
+  if (m_later) {  // a scene with media
+    primary_segments(primary, sc.base);
+    for (size_t k = 0; k < sc.base.size(); ++k) {
+      ++counters.primary_segments;
+      gather(sc.base[k], int(k), rng, sc, counters);
+    }
+    if (!sc.terms.empty())
+      for (int nb = 0; nb < 4; ++nb) offsets(nb, px, py, raster, sc, buf.width(), buf.height(), counters);
+  }
+  if (!sc.splats.flush(buf, px, py)) ++counters.nan_dropped;  // the whole sample is dropped, never splatted
+}
+
+void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h,
+                         GvpmCounters& counters) const {
+  const int qx = px + kPairDx[nb], qy = py + kPairDy[nb];
+  if (qx < 0 || qy < 0 || qx >= w || qy >= h) {  // no pair: the base pixel keeps its own estimate
+    counters.outside_image += int64_t(sc.terms.size());
+    for (const GvpmTerm& t : sc.terms) sc.splats.unpaired(px, py, t.value.cast<double>(), 1.0);
+    return;
+  }
+  // Sec. 4.1: the primary ray through the same sub-pixel position of pixel j.
+  primary_segments(m_scene.camera().generate_ray(raster + Vec2(float(kPairDx[nb]), float(kPairDy[nb]))), sc.offset);
+  const bool truncated = m_settings.fault != GvpmFault::untruncated_offset_pdf;
+  const bool weight_one = m_settings.fault == GvpmFault::mis_weight_one;
+  for (const GvpmGatherPoint& gp : sc.points) {
+    const GvpmSegment& base = sc.base[size_t(gp.segment)];
+    const scene::HomogeneousMedium& med = m_scene.media()[size_t(base.medium)];
+    const scene::HenyeyGreenstein phase(med.phase);
+    // The gather point's copy t' = t (Jacobian 1), valid only inside the offset segment.
+    const GvpmSegment* off = nullptr;
+    int64_t* fail = nullptr;
+    if (size_t(gp.segment) >= sc.offset.size()) fail = &counters.fail_segment_missing;
+    else if (sc.offset[size_t(gp.segment)].medium != base.medium) fail = &counters.fail_medium;
+    else if (!(gp.t < sc.offset[size_t(gp.segment)].len)) fail = &counters.fail_distance;
+    else off = &sc.offset[size_t(gp.segment)];
+    float p_off = 0.0f;
+    if (off) {
+      p_off = distance_pdf(med, off->len, gp.t, truncated);  // Eq. 14 on the offset segment
+      if (!(p_off > 0.0f)) {
+        fail = &counters.fail_distance;
+        off = nullptr;
+      }
+    }
+    const Vec3 d_off = off ? off->ray.at(gp.t) : gp.d;
+    Rgb cam_off = Rgb::Zero();
+    if (off) cam_off = off->beta * scene::transmittance(med, gp.t) * float(m_scale / double(gp.pdf));
+    const double r_cam = off ? double(p_off) / double(gp.pdf) : 0.0;
+    for (uint32_t i = gp.first; i < gp.first + gp.count; ++i) {
+      const GvpmTerm& term = sc.terms[i];
+      const Rgbd base_v = term.value.cast<double>();
+      ++counters.shifts;
+      Rgbd off_v = Rgbd::Zero();
+      double R = 0.0;
+      bool ok = false;
+      if (!off) {
+        ++*fail;
+      } else {
+        const MediumPhoton& ph = *term.photon;
+        Vec3 b_off;
+        const PhotonShiftKind kind = m_settings.mixed
+                                         ? gradients::mixed_photon_shift_t(ph.p, gp.d, d_off, m_radius, b_off)
+                                         : (b_off = gradients::simple_photon_shift(ph.p, gp.d, d_off), PhotonShiftKind::simple);
+        if (kind == PhotonShiftKind::null) {  // the same photon in both kernels: no reconnection
+          ++counters.shift_null;
+          const Rgb v = cam_off * phase.eval(ph.w, -off->ray.d) * ph.beta;
+          off_v = v.cast<double>();
+          R = r_cam;
+          ok = !is_black(v);
+          if (!ok) ++counters.fail_zero;
+        } else {
+          ++(kind == PhotonShiftKind::simple ? counters.shift_simple : counters.shift_reflected);
+          const gradients::PhotonParent& parent = (*m_parents)[ph.index];
+          if (parent.kind != ParentKind::medium && parent.kind != ParentKind::surface && parent.kind != ParentKind::light) {
+            ++counters.fail_parent[size_t(parent.kind)];
+          } else {
+            bool blocked = false;
+            const gradients::PhotonReconnection rec = gradients::reconnect_photon_edge(
+                m_scene, parent, ph.medium, ph.p, b_off, blocked, m_settings.reconnect_fault);
+            if (!rec.ok) {
+              ++(blocked ? counters.fail_occluded : counters.fail_zero);
+            } else {
+              const Rgb v = cam_off * phase.eval(rec.w, -off->ray.d) * ph.beta * rec.ratio;
+              off_v = v.cast<double>();
+              R = r_cam * rec.pdf_ratio;  // Eq. 19: p(Tz) p(Ty) / (p(z) p(y)), |T'| = 1
+              ok = !is_black(v);
+              if (ok) ++counters.reconnections;
+              else ++counters.fail_zero;
+            }
+          }
+        }
+      }
+      // Eq. 19 (balance heuristic, one strategy per pixel): w = 1 / (1 + R).
+      const bool paired = sc.splats.mis_pair(nb, px, py, base_v, 1.0, ok, off_v, 1.0, R, 1.0, weight_one);
+      ++(paired ? counters.pairs_shifted : counters.pairs_fallback);
+    }
+  }
+}
+
+}  // namespace dp::integrators

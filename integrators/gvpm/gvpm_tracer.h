@@ -1,0 +1,108 @@
+// Per-camera-sample physics of gradient-domain volumetric photon mapping (G-VPM, Gruson
+// et al. 2018, Sec. 4; docs/gvpm_plan.md). One camera sample through a jittered position
+// of pixel i:
+//  * the primary ray's segments inside media (through index-matched boundaries, up to the
+//    first surface) are gathered as `vpm` does (vpm_gather.h: `distance_samples`
+//    stratified distances from Eq. 14's truncated pdf, a 3D point query at each), and
+//    every (gather point, photon) term is shifted to the four neighbours:
+//      camera (Sec. 4.1): the primary ray through the same sub-pixel position of pixel j,
+//        traced through the same boundaries; segment k of the base maps to segment k of
+//        the offset, the distance is copied (t' = t, Jacobian 1 in (raster, t)); the
+//        shift fails when the offset segment is missing, lies in another medium or is
+//        not longer than t (Fig. 3; checked in both directions, so symmetric);
+//      photon (Sec. 4.2): the mixed shift of Eq. 16 (or the simple one), Jacobian 1;
+//      reconnection (Sec. 4.3): a shifted photon is reconnected to its parent
+//        (gradients/volume_photon_reconnect.h, reconnect_photon_edge: medium, smooth-
+//        surface and finite-light parents, the edge walked through index-matched
+//        boundaries, any other surface blocks it; specular parents -- no manifold walk
+//        yet -- and parents at infinity fail, counted);
+//    offset value f(Tx)|T'|/p(x) = beta'_k Tr(t) rho_p(w_b', -w') beta_b ratio K / (N M p(t)),
+//    MIS (Eq. 19, balance heuristic) w = 1 / (1 + R), R = p'(t) / p(t) (Eq. 14 on the
+//    offset segment) x p(b' | a) / p(b | a) (1 for a null shift); a failed shift is the
+//    T_0 fallback (the pair's gradient -f(x)/p(x)). Primal as G-PT's pair estimates.
+//  * Everything else of the camera path -- emission seen directly, surface NEE and BSDF
+//    sampling, gathers on segments after the first surface -- is `vpm`'s camera path
+//    (media_camera.h) and goes to the `direct` layer unshifted (added to both
+//    reconstructions), counted by gvpm.direct_paths.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/stats.h"
+#include "gradients/gradient_buffers.h"
+#include "gradients/volume_photon_reconnect.h"
+#include "integrators/gvpm/gvpm_settings.h"
+#include "integrators/media_photons/media_camera.h"
+#include "integrators/media_photons/photon_bvh.h"
+#include "integrators/pair_splats.h"
+
+namespace dp::integrators {
+
+struct GvpmCounters {
+  MediaCameraCounters camera;  // the unshifted (direct) part: vpm's camera path
+  int64_t samples = 0, nan_dropped = 0, direct_paths = 0;
+  int64_t primary_segments = 0, gather_points = 0, photons_gathered = 0, depth_skipped = 0, empty_segments = 0;
+  int64_t shifts = 0, shift_null = 0, shift_simple = 0, shift_reflected = 0, reconnections = 0;
+  int64_t fail_segment_missing = 0, fail_medium = 0, fail_distance = 0, fail_occluded = 0, fail_zero = 0;
+  std::array<int64_t, gradients::kParentKindCount> fail_parent{};
+  int64_t pairs_shifted = 0, pairs_fallback = 0, outside_image = 0;
+  void flush(core::Stats& stats) const;
+};
+
+struct GvpmSegment {
+  Ray ray;          // origin at the segment's start, unit direction
+  float len = 0;    // may be +inf
+  int medium = -1;
+  Rgb beta = Rgb::Ones();  // transmittance of the earlier segments
+};
+
+struct GvpmGatherPoint {
+  int segment = 0;
+  float t = 0, pdf = 0;  // distance from the segment's start, Eq. 14's density
+  Vec3 d{0, 0, 0};
+  uint32_t first = 0, count = 0;  // its terms
+};
+
+struct GvpmTerm {
+  const MediumPhoton* photon = nullptr;
+  Rgb value = Rgb::Zero();  // base f(x)/p(x)
+};
+
+struct GvpmScratch {
+  std::vector<GvpmSegment> base, offset;
+  std::vector<GvpmGatherPoint> points;
+  std::vector<GvpmTerm> terms;
+  PairSplats splats;
+};
+
+class GvpmTracer {
+ public:
+  // `photons`/`parents` may be empty (no media); `later`: the gather of the segments after
+  // the first surface (vpm's), null without media.
+  GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
+             const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
+             const MediumGather* later);
+  void sample(int px, int py, core::Rng& rng, GvpmScratch& scratch, gradients::GradientBuffers& buf,
+              GvpmCounters& counters) const;
+
+ private:
+  void primary_segments(const Ray& primary, std::vector<GvpmSegment>& out) const;
+  // Eq. 14's density of gather distance t on a segment of length len in medium m (channel mixture).
+  float distance_pdf(const scene::HomogeneousMedium& m, float len, float t, bool truncated) const;
+  void gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
+  void offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h, GvpmCounters& counters) const;
+
+  const scene::Scene& m_scene;
+  const GvpmSettings& m_settings;
+  int m_max_depth;
+  const PhotonBvh* m_photons;
+  const std::vector<gradients::PhotonParent>* m_parents;
+  float m_radius;
+  double m_scale;  // K3(r) / (N M)
+  const MediumGather* m_later;
+  MediaCameraTracer m_camera;
+};
+
+}  // namespace dp::integrators

@@ -1,0 +1,400 @@
+// Gradient-domain volumetric photon mapping `gvpm` (issue 15; docs/gvpm_plan.md, Sec. 4),
+// against the volumetric furnace, vpm and volpath:
+//  * furnace (test_vpm_bre's: an index-matched albedo-1 ball under a uniform environment;
+//    10 runs x 16 iterations, 24x24): the L2 reconstruction's image mean lies within vpm's
+//    kernel-bias bound (1/2 sigma_s env x the camera ray's length within r of the sphere)
+//    plus the runs' z margin; the image means of dx and dy are 0 within z (the ball does
+//    not reach the image border, so the forward differences telescope to 0); the primal's
+//    mean agrees with vpm's at the same settings (Welch, Sidak over the channels: gvpm's
+//    primal estimates the same kernel-biased expectation). Per-sample gradients are not 0
+//    here: a reconnected photon's weight changes with t^2/t'^2 and Tr, only the null shift
+//    would leave base and offset equal, and at these radii the kernels do not overlap.
+//    Measured: worst excess/(z se) 0.63, primal vs vpm |t|/crit 0.56; with kernels 4x as
+//    wide (r > the gather points' offset: 0.92M null and 0.76M reflected mixed shifts
+//    over the runs) 0.63 and 0.13.
+//    Planted defects, rejected: the offset's gather density without Eq. 14's truncation
+//    (MIS weights no longer sum to 1): primal vs vpm |t|/crit 1.43; MIS weight 1 on both
+//    sides of a pair (Eq. 19 left out): 8.49 (recon_l2 excess/(z se) 7.70);
+//  * media box with fog (test_vpm_bre's, 32x32, fixed radius 1% of the diagonal, 8 runs x
+//    16 iterations vs volpath 8 runs x 128 spp): the L2 reconstruction's image mean agrees
+//    with volpath's (Welch), and the 4x4-block means of dx / dy (plus the pixel
+//    differences of the unshifted `direct` layer) agree with volpath's pixel differences
+//    over the same pixels (Welch per block, Sidak over the 128 blocks, family-wise 1%).
+//    Measured: mean |t|/crit 0.30, blocks worst 0.50. Planted defects, rejected: MIS
+//    weight 1 (mean 9.31), untruncated offset density (mean 5.14), the reconnection
+//    without the volume measure's 1/t^2 (ReconnectFault::no_volume_factor; blocks 1.80);
+//  * without media: no photon traced, every sample's light in `direct`, gradients 0
+//    (counters); with media the image depends on the seed only (1 vs 2 threads) and 3
+//    parts' raw buffers add up to the whole render's; the photon tracer's photons are
+//    bit-identical with and without parent records (vpm/bre do not record them), and the
+//    media box has light, surface, medium and specular parents.
+#include <boost/math/distributions/normal.hpp>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+
+#include "core/rng.h"
+#include "integrators/gvpm/gvpm_integrator.h"
+#include "integrators/integrator.h"
+#include "integrators/media_photons/photon_tracer.h"
+#include "integrators/vpm/vpm_integrator.h"
+#include "tests/support/test_scenes.h"
+#include "tests/support/welch.h"
+
+using namespace dp;
+using integrators::GvpmFault;
+
+namespace {
+
+integrators::RenderOptions options(int iterations, uint64_t seed, int max_depth) {
+  integrators::RenderOptions opt;
+  opt.spp = iterations;
+  opt.seed = seed;
+  opt.threads = 2;
+  opt.max_depth = max_depth;
+  opt.quiet = true;
+  return opt;
+}
+
+struct Config {
+  GvpmFault fault = GvpmFault::none;
+  gradients::ReconnectFault reconnect_fault = gradients::ReconnectFault::none;
+  int photons = 20000;
+  double radius_scale = 0.01, radius_alpha = 0.7;
+  int distance_samples = 4;
+};
+
+integrators::RenderResult render(const scene::Scene& s, const Config& c, int iterations, uint64_t seed, int max_depth) {
+  integrators::GvpmSettings g;
+  g.photons = c.photons;
+  g.radius_scale = c.radius_scale;
+  g.radius_alpha = c.radius_alpha;
+  g.distance_samples = c.distance_samples;
+  g.fault = c.fault;
+  g.reconnect_fault = c.reconnect_fault;
+  return integrators::GvpmIntegrator(g).render(s, options(iterations, seed, max_depth));
+}
+
+const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {
+  for (const auto& l : r.layers)
+    if (l.name == name) return l.image;
+  FAIL("no layer " << name);
+  return r.layers[0].image;
+}
+
+double channel_mean(const core::Image& img, int c) {
+  double s = 0;
+  for (const auto& p : img.pixels()) s += double(p[c]);
+  return s / double(img.size());
+}
+
+using Runs = std::vector<std::vector<double>>;  // [statistic][run]
+void add_run(Runs& runs, const std::vector<double>& values) {
+  runs.resize(values.size());
+  for (size_t i = 0; i < values.size(); ++i) runs[i].push_back(values[i]);
+}
+
+scene::HomogeneousMedium furnace_medium() {
+  scene::HomogeneousMedium m;
+  m.sigma_a = Rgb::Zero();
+  m.sigma_s = Rgb(0.5f, 1.0f, 2.0f);
+  m.phase.type = scene::PhaseFunctionDesc::Type::hg;
+  m.phase.g = 0.6f;
+  return m;
+}
+const Rgb kEnv(1.0f, 0.8f, 0.6f);
+
+// Mean over the image (16 random rays per pixel) of the camera ray's length inside the
+// shell R - r < |x| < R of the furnace ball (R = 1 at the origin); as test_vpm_bre.
+double shell_length(const scene::Scene& s, double r) {
+  const auto& cam = s.camera();
+  core::Rng rng(77, 0);
+  auto inside = [](const Ray& ray, double radius) {
+    const double b = double(ray.o.dot(ray.d)), c = double(ray.o.squaredNorm()) - radius * radius;
+    const double disc = b * b - c;
+    if (disc <= 0) return 0.0;
+    const double t0 = std::max(0.0, -b - std::sqrt(disc)), t1 = -b + std::sqrt(disc);
+    return std::max(0.0, t1 - t0);
+  };
+  double sum = 0;
+  int n = 0;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x)
+      for (int k = 0; k < 16; ++k, ++n) {
+        const Ray ray = cam.generate_ray(Vec2(float(x) + rng.uniform(), float(y) + rng.uniform()));
+        sum += inside(ray, 1.0) - inside(ray, std::max(0.0, 1.0 - r));
+      }
+  return sum / n;
+}
+
+}  // namespace
+
+TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound, gradients summing to 0", "[stat]") {
+  constexpr int kRes = 24, kIter = 16, kRuns = 10, kDepth = 1000;
+  const auto s = test::medium_furnace(furnace_medium(), kEnv, false, kRes);
+  const double diag = double(s->bounds().diagonal());
+  // 9 statistics (recon_l2, dx, dy x 3 channels) at 1% family-wise (Sidak), two-sided.
+  const double z = boost::math::quantile(boost::math::normal(), 1.0 - (1.0 - std::pow(0.99, 1.0 / 9.0)) / 2.0);
+  // vpm at the same settings: gvpm's primal estimates the same (kernel-biased) expectation.
+  auto vpm_runs = [&](double radius_scale, int photons) {
+    Runs runs;
+    for (int k = 0; k < kRuns; ++k) {
+      integrators::VpmSettings v;
+      v.photons = photons;
+      v.radius_scale = radius_scale;
+      v.radius_alpha = Config{}.radius_alpha;
+      v.distance_samples = Config{}.distance_samples;
+      const auto r = integrators::VpmIntegrator(v).render(*s, options(kIter, 300 + uint64_t(k), kDepth));
+      add_run(runs, {channel_mean(r.layers[0].image, 0), channel_mean(r.layers[0].image, 1),
+                     channel_mean(r.layers[0].image, 2)});
+    }
+    return runs;
+  };
+  const Runs vpm_default = vpm_runs(Config{}.radius_scale, Config{}.photons);
+  auto check = [&](const Config& c, bool expect_pass) {
+    const double shell = shell_length(*s, c.radius_scale * diag);
+    Runs runs, primal;
+    int64_t shifted = 0, reconnections = 0, nulls = 0, reflected = 0;
+    for (int k = 0; k < kRuns; ++k) {
+      const auto r = render(*s, c, kIter, 100 + uint64_t(k), kDepth);
+      CHECK(r.stats.get("gvpm.nan_dropped") == 0);
+      shifted += r.stats.get("gvpm.pairs.shifted");
+      reconnections += r.stats.get("gvpm.shift.reconnections");
+      nulls += r.stats.get("gvpm.shift.null");
+      reflected += r.stats.get("gvpm.shift.reflected");
+      std::vector<double> v;
+      for (const char* name : {"recon_l2", "dx", "dy"})
+        for (int ch = 0; ch < 3; ++ch) v.push_back(channel_mean(layer(r, name), ch));
+      add_run(runs, v);
+      const core::Image& p = layer(r, "primal");
+      add_run(primal, {channel_mean(p, 0), channel_mean(p, 1), channel_mean(p, 2)});
+    }
+    double worst = 0;  // in units of the critical value
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const int ch = int(i % 3);
+      const bool gradient = i >= 3;
+      const test::Moments m = test::moments(runs[i]);
+      const double se = std::sqrt(m.var / double(m.n));
+      const double expect = gradient ? 0.0 : double(kEnv[ch]);
+      const double bound = gradient ? 0.0 : 0.5 * double(furnace_medium().sigma_s[ch]) * double(kEnv[ch]) * shell;
+      const double excess = (std::abs(m.mean - expect) - bound) / se;
+      worst = std::max(worst, excess / z);
+      std::printf("[gvpm furnace] fault %d %s ch %d: mean %.5f (expect %.2f, bias bound %.4f, se %.5f) excess/se %.2f\n",
+                  int(c.fault), i < 3 ? "recon_l2" : i < 6 ? "dx" : "dy", ch, m.mean, expect, bound, se, excess);
+    }
+    const double vs_vpm =
+        test::sidak_welch(primal, c.radius_scale == Config{}.radius_scale ? vpm_default : vpm_runs(c.radius_scale, c.photons), 0.01);
+    std::printf("[gvpm furnace] fault %d: primal vs vpm worst |t|/crit %.2f; pairs shifted %lld, reconnections %lld, null "
+                "shifts %lld, reflected %lld; worst excess/(se z) %.2f (z %.2f)\n",
+                int(c.fault), vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
+                (long long)reflected, worst, z);
+    worst = std::max(worst, vs_vpm);
+    CHECK(shifted > 0);
+    CHECK(reconnections > 0);
+    if (c.radius_scale > Config{}.radius_scale) CHECK((nulls > 0 && reflected > 0));
+    if (expect_pass) CHECK(worst < 1.0);
+    else CHECK(worst > 1.0);
+  };
+  check(Config{}, true);
+  {  // kernels wider than a pixel's offset: null and reflected (mixed) shifts occur
+    Config wide;
+    wide.radius_scale = 0.04;
+    wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
+    check(wide, true);
+  }
+  for (auto f : {GvpmFault::untruncated_offset_pdf, GvpmFault::mis_weight_one}) {
+    Config c;
+    c.fault = f;
+    check(c, false);
+  }
+}
+
+namespace {
+
+constexpr int kBoxRes = 32, kBoxBlock = 4, kBoxDepth = 8, kBoxRuns = 8, kBoxIterations = 16;
+
+// Per run: the image mean (summed channels), then per 4x4 block the mean of the forward
+// differences in x and in y (summed channels) over the block's pixels whose neighbour
+// exists -- from `dx`/`dy` layers plus the pixel differences of the unshifted `direct`
+// layer (gvpm's gradients cover only the primary ray's gathers), or from the image's own
+// pixel differences (dx, dy null: volpath).
+std::vector<double> gradient_blocks(const core::Image& img, const core::Image* dx, const core::Image* dy,
+                                    const core::Image* direct = nullptr) {
+  const int w = img.width(), h = img.height();
+  std::vector<double> out;
+  double total = 0;
+  for (const auto& p : img.pixels()) total += double(p.sum());
+  out.push_back(total / double(img.size()));
+  for (int axis = 0; axis < 2; ++axis)
+    for (int by = 0; by < h / kBoxBlock; ++by)
+      for (int bx = 0; bx < w / kBoxBlock; ++bx) {
+        double s = 0;
+        int n = 0;
+        for (int y = by * kBoxBlock; y < (by + 1) * kBoxBlock; ++y)
+          for (int x = bx * kBoxBlock; x < (bx + 1) * kBoxBlock; ++x) {
+            const int qx = x + (axis == 0), qy = y + (axis == 1);
+            if (qx >= w || qy >= h) continue;
+            const core::Image* g = axis == 0 ? dx : dy;
+            s += g ? double((*g)(x, y).sum()) + double((*direct)(qx, qy).sum() - (*direct)(x, y).sum())
+                   : double(img(qx, qy).sum() - img(x, y).sum());
+            ++n;
+          }
+        out.push_back(s / double(n));
+      }
+  return out;
+}
+
+const Runs& volpath_reference(const scene::Scene& s) {
+  static Runs ref;
+  if (!ref.empty()) return ref;
+  for (int k = 0; k < kBoxRuns; ++k) {
+    integrators::Settings settings;
+    auto in = integrators::make_integrator("volpath", settings);
+    const auto r = in->render(s, options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
+    add_run(ref, gradient_blocks(r.layers[0].image, nullptr, nullptr));
+  }
+  return ref;
+}
+
+}  // namespace
+
+TEST_CASE("gvpm: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
+  const auto s = test::media_box(true, kBoxRes);
+  const Runs& ref = volpath_reference(*s);
+  auto runs_of = [&](const Config& c) {
+    Runs runs;
+    int64_t shifted = 0, fallback = 0;
+    for (int k = 0; k < kBoxRuns; ++k) {
+      const auto r = render(*s, c, kBoxIterations, 700 + uint64_t(k), kBoxDepth);
+      shifted += r.stats.get("gvpm.pairs.shifted");
+      fallback += r.stats.get("gvpm.pairs.fallback");
+      std::vector<double> v = gradient_blocks(layer(r, "recon_l2"), &layer(r, "dx"), &layer(r, "dy"), &layer(r, "direct"));
+      add_run(runs, v);
+    }
+    std::printf("[gvpm media box] fault %d: pairs shifted %lld, fallback %lld\n", int(c.fault), (long long)shifted,
+                (long long)fallback);
+    return runs;
+  };
+  Config c;
+  c.photons = 5000;
+  c.radius_scale = 0.01;
+  c.radius_alpha = 1.0;
+  const Runs runs = runs_of(c);
+  const double mean_ratio = test::welch_ratio(test::moments(runs[0]), test::moments(ref[0]), 0.01);
+  const Runs blocks(runs.begin() + 1, runs.end()), ref_blocks(ref.begin() + 1, ref.end());
+  const double block_ratio = test::sidak_welch(blocks, ref_blocks, 0.01);
+  std::printf("[gvpm vs volpath, media box] L2 image mean %.4f vs %.4f: |t|/crit %.2f; dx/dy blocks worst |t|/crit %.2f\n",
+              test::moments(runs[0]).mean, test::moments(ref[0]).mean, mean_ratio, block_ratio);
+  CHECK(mean_ratio < 1.0);
+  CHECK(block_ratio < 1.0);
+  // Planted defects, each rejected by the image mean or the blocks.
+  for (int d = 0; d < 3; ++d) {
+    Config bad = c;
+    if (d == 0) bad.fault = GvpmFault::mis_weight_one;
+    if (d == 1) bad.fault = GvpmFault::untruncated_offset_pdf;
+    if (d == 2) bad.reconnect_fault = gradients::ReconnectFault::no_volume_factor;
+    const Runs bad_runs = runs_of(bad);
+    const Runs bad_blocks(bad_runs.begin() + 1, bad_runs.end());
+    const double bad_mean = test::welch_ratio(test::moments(bad_runs[0]), test::moments(ref[0]), 0.01);
+    const double bad_ratio = test::sidak_welch(bad_blocks, ref_blocks, 0.01);
+    std::printf("[gvpm vs volpath, media box] defect %d: L2 mean |t|/crit %.2f, dx/dy blocks worst |t|/crit %.2f\n", d,
+                bad_mean, bad_ratio);
+    CHECK(std::max(bad_mean, bad_ratio) > 1.0);
+  }
+}
+
+TEST_CASE("gvpm: without media no photon is traced; with media seed-only determinism and parts add up", "[unit]") {
+  {
+    const auto s = test::lit_box(nullptr, nullptr, 16);
+    REQUIRE_FALSE(s->caps().has_media);
+    const auto r = render(*s, Config{}, 3, 4, kBoxDepth);
+    CHECK(r.stats.get("gvpm.iterations") == 3);
+    CHECK(r.stats.get("gvpm.photon_passes_skipped") == 3);
+    CHECK(r.stats.get("gvpm.photon_paths") == 0);
+    CHECK(r.stats.get("gvpm.samples") == 3 * 16 * 16);
+    CHECK(r.stats.get("gvpm.media_skipped") == 3 * 16 * 16);
+    CHECK(r.stats.get("gvpm.primary_segments") + r.stats.get("gvpm.shift.attempted") == 0);
+    double g = 0;
+    for (const char* name : {"dx", "dy"})
+      for (const auto& p : layer(r, name).pixels()) g += double(p.abs().sum());
+    CHECK(g == 0.0);
+    CHECK(r.min_spp == 3);
+  }
+  const auto s = test::media_box(true, 16);
+  {  // parent records do not change the photons (planted defect: the record drawn from the
+     // path's own stream instead of a copy: the photon count differs, REQUIRE fails)
+    integrators::PhotonTraceParams tp;
+    tp.paths = 9000;
+    tp.max_depth = kBoxDepth;
+    tp.seed = 5;
+    tp.threads = 2;
+    std::vector<integrators::MediumPhoton> plain, recorded;
+    std::vector<gradients::PhotonParent> parents;
+    integrators::PhotonTraceCounters c1, c2;
+    REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, plain, c1));
+    REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, recorded, c2, &parents));
+    REQUIRE(plain.size() == recorded.size());
+    REQUIRE(parents.size() == recorded.size());
+    bool same = !plain.empty();
+    int64_t kinds[gradients::kParentKindCount] = {};
+    for (size_t i = 0; i < plain.size(); ++i) {
+      same = same && plain[i].p == recorded[i].p && (plain[i].beta == recorded[i].beta).all() &&
+             recorded[i].index == uint32_t(i);
+      ++kinds[int(parents[i].kind)];
+    }
+    CHECK(same);
+    // The box has all kinds of parents but the infinite light: area light, walls, the
+    // glass ball (specular), the smoke and the fog.
+    CHECK(kinds[int(gradients::ParentKind::light)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::surface)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::medium)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::specular)] > 0);
+    CHECK(kinds[int(gradients::ParentKind::none)] == 0);
+  }
+  Config c;
+  c.photons = 9000;  // three photon chunks
+  c.radius_scale = 0.02;
+  integrators::GvpmSettings g;
+  g.photons = c.photons;
+  g.radius_scale = c.radius_scale;
+  g.distance_samples = 4;
+  integrators::GvpmIntegrator in(g);
+  auto opt = options(3, 21, kBoxDepth);
+  opt.threads = 1;
+  const auto one = in.render(*s, opt);
+  opt.threads = 2;
+  const auto two = in.render(*s, opt);
+  opt.seed = 22;
+  const auto other = in.render(*s, opt);
+  REQUIRE(one.stats.get("gvpm.photons_stored") > 0);
+  REQUIRE(one.stats.get("gvpm.shift.reconnections") > 0);
+  bool same = true, differs = false;
+  for (const char* name : {"primal", "dx", "dy", "direct"}) {
+    const core::Image &a = layer(one, name), &b = layer(two, name), &o = layer(other, name);
+    for (size_t i = 0; i < a.size(); ++i) {
+      same = same && (a[i] == b[i]).all();
+      differs = differs || !(a[i] == o[i]).all();
+    }
+  }
+  CHECK(same);
+  CHECK(differs);
+  auto popt = options(4, 21, kBoxDepth);
+  popt.raw = true;
+  const auto whole = in.render(*s, popt);
+  core::RawImage sum;
+  for (int k = 0; k < 3; ++k) {
+    popt.part = k;
+    popt.parts = 3;
+    const auto part = in.render(*s, popt);
+    if (k == 0) sum = part.raw;
+    else sum.add(part.raw);
+  }
+  CHECK(sum.counts.at("spp") == whole.raw.counts.at("spp"));
+  double worst = 0;
+  for (const char* name : {"primal", "dx", "dy", "direct"}) {
+    const auto& a = sum.sums.at(name);
+    const auto& w = whole.raw.sums.at(name);
+    for (size_t i = 0; i < w.size(); ++i) worst = std::max(worst, ((a[i] - w[i]).abs() / (w[i].abs() + 1e-300)).maxCoeff());
+  }
+  CHECK(worst < 1e-12);
+}
