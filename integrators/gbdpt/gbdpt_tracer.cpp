@@ -45,8 +45,6 @@ GbdptTracer::GbdptTracer(const scene::Scene& scene, const GbdptSettings& setting
 }
 
 namespace {
-constexpr const int* kDx = kPairDx;
-constexpr const int* kDy = kPairDy;
 }
 
 void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradients::GradientBuffers& buf,
@@ -104,10 +102,10 @@ void GbdptTracer::sample(int px, int py, core::Rng& rng, GbdptScratch& sc, gradi
 }
 
 void GbdptTracer::offsets(int nb, GbdptScratch& sc, int w, int h, GbdptCounters& counters) const {
-  const Vec2 offset(float(kDx[nb]), float(kDy[nb]));
+  const Vec2 offset(float(kPairDx[nb]), float(kPairDy[nb]));
   bool camera_shifted = false;
   for (const GbdptTerm& term : sc.terms) {
-    const int qx = term.px + kDx[nb], qy = term.py + kDy[nb];
+    const int qx = term.px + kPairDx[nb], qy = term.py + kPairDy[nb];
     const Rgbd base = term.value.cast<double>();
     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
       ++counters.outside_image;  // no pair: the base pixel keeps its own estimate

@@ -41,8 +41,6 @@ void GpmCounters::flush(core::Stats& stats) const {
 
 namespace {
 
-constexpr const int* kDx = kPairDx;
-constexpr const int* kDy = kPairDy;
 
 }  // namespace
 
@@ -131,13 +129,13 @@ void GpmTracer::sample(int px, int py, core::Rng& rng, GpmScratch& sc, gradients
 
 void GpmTracer::offsets(int nb, int px, int py, const Vec2& raster, int b, double r, GpmScratch& sc, int w, int h,
                         GpmCounters& counters) const {
-  const int qx = px + kDx[nb], qy = py + kDy[nb];
+  const int qx = px + kPairDx[nb], qy = py + kPairDy[nb];
   if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
     counters.outside_image += int64_t(sc.terms.size());  // no pair: the base pixel keeps its own estimate
     for (const GpmTerm& t : sc.terms) sc.splats.unpaired(px, py, t.value.cast<double>(), 1.0);
     return;
   }
-  gradients::shift_camera_subpath(m_scene, sc.camera, raster, Vec2(float(kDx[nb]), float(kDy[nb])), m_shift, sc.shift);
+  gradients::shift_camera_subpath(m_scene, sc.camera, raster, Vec2(float(kPairDx[nb]), float(kPairDy[nb])), m_shift, sc.shift);
   ++counters.camera_shifts;
   if (sc.shift.status != ShiftStatus::ok) ++counters.camera_fail[size_t(sc.shift.status)];
   const bool camera_ok = sc.shift.alive > b && sc.shift.b == b;

@@ -49,8 +49,6 @@ void GvcmCounters::flush(core::Stats& stats) const {
 }
 
 namespace {
-constexpr const int* kDx = kPairDx;
-constexpr const int* kDy = kPairDy;
 }  // namespace
 
 GvcmTracer::GvcmTracer(const scene::Scene& scene, const GvcmSettings& settings, const VcmIteration& it,
@@ -155,11 +153,11 @@ void GvcmTracer::merges(int px, int py, GvcmScratch& sc, GvcmCounters& counters)
 
 void GvcmTracer::offsets(int nb, const BidirVertex* light, const VcmPrefix* lp, GvcmScratch& sc, int w, int h,
                          GvcmCounters& counters) const {
-  const Vec2 offset(float(kDx[nb]), float(kDy[nb]));
+  const Vec2 offset(float(kPairDx[nb]), float(kPairDy[nb]));
   const double beta = m_settings.beta();
   bool camera_shifted = false;
   for (const GvcmTerm& term : sc.terms) {
-    const int qx = term.px + kDx[nb], qy = term.py + kDy[nb];
+    const int qx = term.px + kPairDx[nb], qy = term.py + kPairDy[nb];
     const Rgbd base = term.value.cast<double>();
     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
       ++counters.outside_image;  // no pair: the base pixel keeps its own estimate

@@ -112,7 +112,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   core::Json settings = m_json;
   RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
                                     : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction,
-                                                      threads, settings);
+                                                      options, settings);
   photon_counters.flush(result.stats, "gvpm");
   result.stats.add("gvpm.iterations", done);
   if (!media) result.stats.add("gvpm.photon_passes_skipped", done);
