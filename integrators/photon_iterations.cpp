@@ -5,6 +5,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
+#include "integrators/iteration_share.h"
 
 namespace dp::integrators {
 
@@ -17,11 +18,8 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  // Part k of n (render --part/--mpi, issue 17) runs the global iterations k, k + n, ...:
-  // each a whole iteration (its photon map needs every light path) with its own index's
-  // radius and streams, so the parts' summed buffers are the single render's.
-  const int64_t parts = std::max(1, options.parts), part = options.part;
-  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
+  const IterationShare share(options);
+  const int64_t target = share.target;
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
   const int64_t tiles = int64_t(tiles_x) * tiles_y;
 
@@ -40,7 +38,7 @@ PhotonIterations render_photon_iterations(const scene::Scene& scene, const Rende
       out.passes.partial = true;
       break;
     }
-    const int64_t global = part + done * parts;
+    const int64_t global = share.global(done);
     const VcmIteration it = iteration(global);
     VcmLightCounters lc;
     if (!trace_light_paths(scene, light_settings, it, pixels, threads, options.stop, light, lc)) {

@@ -8,6 +8,7 @@
 #include "core/timer.h"
 #include "integrators/gradient_passes.h"
 #include "integrators/gvpm/gvpm_tracer.h"
+#include "integrators/iteration_share.h"
 #include "integrators/media_photons/media_photon_render.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/tile_scheduler.h"
@@ -22,8 +23,8 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
   const bool media = scene.caps().has_media;
-  const int64_t parts = std::max(1, options.parts), part = options.part;
-  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
+  const IterationShare share(options);
+  const int64_t target = share.target;
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
   const int64_t tiles = int64_t(tiles_x) * tiles_y;
   const double r1 = initial_media_radius(scene, m_settings);
@@ -48,18 +49,12 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
       passes.partial = true;
       break;
     }
-    const int64_t global = part + done * parts;
+    const int64_t global = share.global(done);
     const float r = float(progressive_radius(r1, global, m_settings.radius_alpha, 3));
     PhotonTraceCounters pc;
     std::unique_ptr<VpmGather> later;
     if (media) {  // no photon is traced for a scene without media
-      PhotonTraceParams tp;
-      tp.paths = m_settings.photons;
-      tp.max_depth = options.max_depth;
-      tp.rr_depth = m_settings.rr_depth;
-      tp.seed = options.seed;
-      tp.iteration = global;
-      tp.threads = threads;
+      const PhotonTraceParams tp = photon_pass_params(m_settings, options, global, threads);
       std::vector<MediumPhoton> photons;
       if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents)) {
         passes.partial = true;

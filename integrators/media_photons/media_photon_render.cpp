@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
+#include "integrators/iteration_share.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/radiance_render.h"
 #include "integrators/raw_result.h"
@@ -18,6 +19,18 @@ double initial_media_radius(const scene::Scene& scene, const MediaPhotonSettings
   return settings.radius_scale * (diag > 0.0 && std::isfinite(diag) ? diag : 1.0);
 }
 
+PhotonTraceParams photon_pass_params(const MediaPhotonSettings& settings, const RenderOptions& options, int64_t global,
+                                     int threads) {
+  PhotonTraceParams tp;
+  tp.paths = settings.photons;
+  tp.max_depth = options.max_depth;
+  tp.rr_depth = settings.rr_depth;
+  tp.seed = options.seed;
+  tp.iteration = global;
+  tp.threads = threads;
+  return tp;
+}
+
 RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
                                   const MediaPhotonSettings& settings, int kernel_dim, const MakeGather& make_gather) {
   const auto& cam = scene.camera();
@@ -25,8 +38,8 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
   const bool media = scene.caps().has_media;
-  const int64_t parts = std::max(1, options.parts), part = options.part;
-  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
+  const IterationShare share(options);
+  const int64_t target = share.target;
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
   const int64_t tiles = int64_t(tiles_x) * tiles_y;
   const double r1 = initial_media_radius(scene, settings);
@@ -46,18 +59,12 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
       partial = true;
       break;
     }
-    const int64_t global = part + done * parts;
+    const int64_t global = share.global(done);
     const float r = float(progressive_radius(r1, global, settings.radius_alpha, kernel_dim));
     PhotonTraceCounters pc;
     std::unique_ptr<MediumGather> gather;
     if (media) {  // no photon is traced for a scene without media
-      PhotonTraceParams tp;
-      tp.paths = settings.photons;
-      tp.max_depth = options.max_depth;
-      tp.rr_depth = settings.rr_depth;
-      tp.seed = options.seed;
-      tp.iteration = global;
-      tp.threads = threads;
+      const PhotonTraceParams tp = photon_pass_params(settings, options, global, threads);
       std::vector<MediumPhoton> photons;
       if (!trace_medium_photons(scene, tp, options.stop, photons, pc)) {
         partial = true;

@@ -19,6 +19,7 @@
 #include "integrators/media_photons/media_camera.h"
 #include "integrators/media_photons/media_photon_settings.h"
 #include "integrators/media_photons/photon_bvh.h"
+#include "integrators/media_photons/photon_tracer.h"
 
 namespace dp::integrators {
 
@@ -31,5 +32,10 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
 
 // First iteration's radius: radius_scale x the scene's bounding-box diagonal.
 double initial_media_radius(const scene::Scene& scene, const MediaPhotonSettings& settings);
+
+// The photon pass of global iteration `global` (vpm, bre, gvpm): `photons` light paths,
+// the render's depth and seed, the settings' roulette depth, on `threads` threads.
+PhotonTraceParams photon_pass_params(const MediaPhotonSettings& settings, const RenderOptions& options, int64_t global,
+                                     int threads);
 
 }  // namespace dp::integrators

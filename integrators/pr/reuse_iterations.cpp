@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
+#include "integrators/iteration_share.h"
 #include "integrators/tile_scheduler.h"
 
 namespace dp::integrators {
@@ -17,8 +18,8 @@ ReuseSchedule run_reuse_iterations(int w, int h, int tile_size, const RenderOpti
                                    const ReuseTileFunction& fn, bool jitter) {
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  const int64_t parts = std::max(1, options.parts), part = options.part;
-  const int64_t target = timed ? 0 : (std::max(1, options.spp) + parts - 1 - part) / parts;  // this part's share
+  const IterationShare share(options, 1);  // every pixel gets a sample
+  const int64_t target = share.target;
   ReuseSchedule out;
   out.count.assign(size_t(w) * size_t(h), 0);
   core::Timer timer;
@@ -29,7 +30,7 @@ ReuseSchedule run_reuse_iterations(int w, int h, int tile_size, const RenderOpti
     return timed && timer.seconds() >= options.time_budget;
   };
   for (int64_t k = 0; timed || k < target; ++k) {
-    const int64_t it = part + k * parts;  // the global iteration
+    const int64_t it = share.global(k);
     const bool first = k == 0;  // always completes: every pixel gets a sample
     if (!first && should_stop()) break;
     const ReuseTiling tiling = jittered_tiling(w, h, tile_size, options.seed, it, jitter);

@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "core/timer.h"
+#include "integrators/iteration_share.h"
 #include "integrators/radiance_render.h"
 #include "integrators/raw_result.h"
 #include "integrators/tile_scheduler.h"
@@ -44,10 +45,8 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
   const int64_t pixels = int64_t(w) * h;
   const int threads = resolve_threads(options);
   const bool timed = options.time_budget > 0;
-  // Part k of n (--part/--mpi, issue 17): the global iterations k, k + n, ... (as
-  // photon_iterations.h): whole iterations with their global index's radius and streams.
-  const int64_t parts = std::max(1, options.parts), part = options.part;
-  const int64_t target = timed ? 0 : (std::max<int64_t>(options.spp, 0) + parts - 1 - part) / parts;
+  const IterationShare share(options);
+  const int64_t target = share.target;
   const float r0 = m_settings.radius * (scene.scene_radius() > 0.0f ? scene.scene_radius() : 1.0f);
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
 
@@ -68,7 +67,7 @@ RenderResult VcmIntegrator::render(const scene::Scene& scene, const RenderOption
       interrupted = true;
       break;
     }
-    const int64_t global = part + done * parts;
+    const int64_t global = share.global(done);
     VcmIteration it;
     it.index = global;
     it.seed = options.seed;

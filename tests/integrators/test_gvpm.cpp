@@ -38,6 +38,7 @@
 #include "integrators/integrator.h"
 #include "integrators/media_photons/photon_tracer.h"
 #include "integrators/vpm/vpm_integrator.h"
+#include "tests/integrators/media_furnace_support.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
 
@@ -88,44 +89,11 @@ double channel_mean(const core::Image& img, int c) {
   return s / double(img.size());
 }
 
-using Runs = std::vector<std::vector<double>>;  // [statistic][run]
-void add_run(Runs& runs, const std::vector<double>& values) {
-  runs.resize(values.size());
-  for (size_t i = 0; i < values.size(); ++i) runs[i].push_back(values[i]);
-}
-
-scene::HomogeneousMedium furnace_medium() {
-  scene::HomogeneousMedium m;
-  m.sigma_a = Rgb::Zero();
-  m.sigma_s = Rgb(0.5f, 1.0f, 2.0f);
-  m.phase.type = scene::PhaseFunctionDesc::Type::hg;
-  m.phase.g = 0.6f;
-  return m;
-}
-const Rgb kEnv(1.0f, 0.8f, 0.6f);
-
-// Mean over the image (16 random rays per pixel) of the camera ray's length inside the
-// shell R - r < |x| < R of the furnace ball (R = 1 at the origin); as test_vpm_bre.
-double shell_length(const scene::Scene& s, double r) {
-  const auto& cam = s.camera();
-  core::Rng rng(77, 0);
-  auto inside = [](const Ray& ray, double radius) {
-    const double b = double(ray.o.dot(ray.d)), c = double(ray.o.squaredNorm()) - radius * radius;
-    const double disc = b * b - c;
-    if (disc <= 0) return 0.0;
-    const double t0 = std::max(0.0, -b - std::sqrt(disc)), t1 = -b + std::sqrt(disc);
-    return std::max(0.0, t1 - t0);
-  };
-  double sum = 0;
-  int n = 0;
-  for (int y = 0; y < cam.height(); ++y)
-    for (int x = 0; x < cam.width(); ++x)
-      for (int k = 0; k < 16; ++k, ++n) {
-        const Ray ray = cam.generate_ray(Vec2(float(x) + rng.uniform(), float(y) + rng.uniform()));
-        sum += inside(ray, 1.0) - inside(ray, std::max(0.0, 1.0 - r));
-      }
-  return sum / n;
-}
+using test::add_run;
+using test::furnace_medium;
+using test::Runs;
+using test::shell_length;
+const Rgb kEnv = test::kFurnaceEnv;
 
 }  // namespace
 
