@@ -3,15 +3,14 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/vpm/vpm_settings.h"
 
 namespace dp::integrators {
 
 GvpmSettings GvpmSettings::read(Settings& s) {
   GvpmSettings g;
   g.read_common(s, 0.0015);
-  g.distance_samples = s.get_int("distance_samples", g.distance_samples,
-                                 "stratified gather distances per camera segment inside a medium, each a point query "
-                                 "(Gruson et al. 2018, Eq. 14 and Sec. 6.1: 40)");
+  g.distance_samples = VpmSettings::read_distance_samples(s, g.distance_samples);
   g.alpha = float(s.get_double("alpha", double(g.alpha),
                                "screened Poisson weight of the primal image, L1 and L2 (Gruson et al. 2018, Sec. 6.1: 0.2)"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
@@ -19,7 +18,6 @@ GvpmSettings GvpmSettings::read(Settings& s) {
   g.mixed = s.get_bool("mixed_shift", g.mixed,
                        "mixed photon shift (Gruson et al. 2018, Eq. 16: photons in both kernels are reused); "
                        "false: every photon takes the simple shift b + (d' - d) and is reconnected");
-  if (g.distance_samples < 1) throw ValueError("setting 'distance_samples' must be >= 1", "--set");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
   return g;
 }

@@ -23,6 +23,8 @@ struct VpmSettings : MediaPhotonSettings {
   VpmFault fault = VpmFault::none;  // tests only
 
   static VpmSettings read(Settings& s);
+  // The `distance_samples` setting (>= 1), shared with gvpm's gathers.
+  static int read_distance_samples(Settings& s, int fallback);
 };
 
 }  // namespace dp::integrators
