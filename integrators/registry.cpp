@@ -40,6 +40,7 @@ const std::vector<Entry>& registry() {
       {"vpm", make<VpmIntegrator>, "progressive volumetric photon mapping: photons at medium scattering events, point queries along camera segments in media, 3D kernel (Jensen & Christensen 1998; Gruson et al. 2018, Sec. 4)"},
       {"bre", make<BreIntegrator>, "progressive beam radiance estimate: camera segments in media as beam queries against medium photons, 2D kernel (Jarosz et al. 2008; Gruson et al. 2018, Sec. 5.1)"},
       {"gvpm", make<GvpmIntegrator>, "gradient-domain volumetric photon mapping: vpm's primary-ray gathers shifted (distance copy, mixed photon shift, reconnection to the photon's parent, Eq. 19 MIS), L1/L2 reconstruction (Gruson et al. 2018, Sec. 4)"},
+      {"gbre", GvpmIntegrator::make_gbre, "gradient-domain beam radiance estimate: each primary-ray segment in a medium a Point-Beam 3D query (a gather point per photon, uniform on its chord), shifted as gvpm's, L1/L2 reconstruction (Gruson et al. 2018, Sec. 5.1)"},
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},

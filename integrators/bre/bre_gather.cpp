@@ -20,17 +20,30 @@ Rgb BreGather::gather(const Ray& ray, float seg_len, int medium, int max_photon_
   const bool with_tr = m_settings.fault != BreFault::no_transmittance;
   ++counters.queries;
   Rgbd sum = Rgbd::Zero();
-  m_photons.query_beam(ray.o, ray.d, seg_len, m_radius, [&](const MediumPhoton& ph, float t, float) {
+  const bool three = m_settings.kernel_dim == 3;
+  auto add = [&](const MediumPhoton& ph, const Rgb& camera) {
     if (ph.medium != medium) return;
     if (ph.depth > max_photon_depth) {
       ++counters.depth_skipped;
       return;
     }
     ++counters.photons;
-    const Rgb tr = with_tr ? scene::transmittance(med, t) : Rgb::Ones();
-    sum += (tr * phase.eval(ph.w, to_camera) * ph.beta).cast<double>();
-  });
-  const int dim = m_settings.fault == BreFault::kernel_3d_norm ? 3 : 2;
+    sum += (camera * phase.eval(ph.w, to_camera) * ph.beta).cast<double>();
+  };
+  if (three) {  // photons within r of the segment: projections in [-r, seg_len + r]
+    const float r = m_radius;
+    m_photons.query_beam(ray.o - r * ray.d, ray.d, seg_len + 2.0f * r, r, [&](const MediumPhoton& ph, float t, float d2) {
+      float lo = 0, hi = 0;
+      if (!point_beam_chord(t - r, d2, r, seg_len, lo, hi)) return;
+      add(ph, with_tr ? scene::integrated_transmittance(med, lo, hi) : Rgb::Constant(hi - lo));
+    });
+  } else {
+    m_photons.query_beam(ray.o, ray.d, seg_len, m_radius, [&](const MediumPhoton& ph, float t, float) {
+      add(ph, with_tr ? scene::transmittance(med, t) : Rgb::Ones());
+    });
+  }
+  const bool wrong_norm = m_settings.fault == BreFault::kernel_3d_norm;
+  const int dim = wrong_norm ? 5 - m_settings.kernel_dim : m_settings.kernel_dim;
   return (sum * (uniform_kernel(dim, double(m_radius)) / double(m_paths))).cast<float>();
 }
 

@@ -7,6 +7,11 @@
 // (the 3D kernel of Eq. 5 integrated along the beam is a 2D kernel; photon weights as
 // photon_tracer.h). Only photons of the same medium and of depth <= the path-length
 // budget count. No distance is sampled: the estimate is deterministic given the photons.
+// kernel=3d (Point-Beam 3D, Gruson et al. 2018, Sec. 5.1): every photon within r of the
+// segment contributes its 3D kernel integrated along it,
+//   L_m ~ 1/N sum_k rho_p(w_k, -w) beta_k K3 int_{chord_k} Tr(t) dt
+// (volume_kernel.h's chord, scene/media/free_flight.h's integral in closed form): the
+// expectation of `vpm`'s gather with its distance sampling integrated out.
 #pragma once
 
 #include "integrators/bre/bre_settings.h"

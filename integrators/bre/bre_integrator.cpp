@@ -7,7 +7,7 @@
 namespace dp::integrators {
 
 RenderResult BreIntegrator::render(const scene::Scene& scene, const RenderOptions& options) {
-  return render_media_photons(scene, options, "bre", m_settings, 2,
+  return render_media_photons(scene, options, "bre", m_settings, m_settings.kernel_dim,
                               [&](const PhotonBvh& photons, float radius, int64_t paths) {
                                 return std::make_unique<BreGather>(scene, m_settings, photons, radius, paths);
                               });

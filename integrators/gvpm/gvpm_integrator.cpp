@@ -12,6 +12,7 @@
 #include "integrators/media_photons/media_photon_render.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/tile_scheduler.h"
+#include "integrators/bre/bre_gather.h"
 #include "integrators/vpm/vpm_gather.h"
 
 namespace dp::integrators {
@@ -28,9 +29,16 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
   const int64_t tiles = int64_t(tiles_x) * tiles_y;
   const double r1 = initial_media_radius(scene, m_settings);
-  VpmSettings vpm;  // the gathers of the unshifted camera segments (after the first surface)
+  const std::string prefix = m_settings.name();  // gvpm | gbre
+  const bool beam = m_settings.gather == GvpmGather::beam;
+  // The gathers of the unshifted camera segments (after the first surface): vpm's, or for
+  // gbre bre's Point-Beam 3D (the same estimator as its shifted gathers, integrated).
+  VpmSettings vpm;
   static_cast<MediaPhotonSettings&>(vpm) = m_settings;
   vpm.distance_samples = m_settings.distance_samples;
+  BreSettings bre;
+  static_cast<MediaPhotonSettings&>(bre) = m_settings;
+  bre.kernel_dim = 3;
 
   GradientPasses passes;
   passes.total = gradients::GradientBuffers(w, h);
@@ -41,7 +49,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   PhotonTraceCounters photon_counters;
   PhotonBvh bvh;
   core::Timer timer;
-  core::Progress progress("gvpm", timed ? 1000 : target, options.quiet);
+  core::Progress progress(prefix, timed ? 1000 : target, options.quiet);
   int64_t done = 0;
   double radius = r1;
   while (timed ? timer.seconds() < options.time_budget : done < target) {
@@ -52,7 +60,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
     const int64_t global = share.global(done);
     const float r = float(progressive_radius(r1, global, m_settings.radius_alpha, 3));
     PhotonTraceCounters pc;
-    std::unique_ptr<VpmGather> later;
+    std::unique_ptr<MediumGather> later;
     if (media) {  // no photon is traced for a scene without media
       const PhotonTraceParams tp = photon_pass_params(m_settings, options, global, threads);
       std::vector<MediumPhoton> photons;
@@ -61,7 +69,8 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
         break;
       }
       bvh.build(std::move(photons));
-      later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
+      if (beam) later = std::make_unique<BreGather>(scene, bre, bvh, r, tp.paths);
+      else later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
     }
     const GvpmTracer tracer(scene, m_settings, options.max_depth, media ? &bvh : nullptr, media ? &parents : nullptr, r,
                             media ? int64_t(m_settings.photons) : 0, later.get());
@@ -76,7 +85,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
           for (int y = y0; y < std::min(h, y0 + kTileSize); ++y)
             for (int x = x0; x < std::min(w, x0 + kTileSize); ++x)
               tracer.sample(x, y, rng, scratch[size_t(thread)], buffers[size_t(thread)], counters);
-          counters.flush(iter_stats[size_t(thread)]);
+          counters.flush(iter_stats[size_t(thread)], prefix);
           tile_done[size_t(ti)] = 1;
         },
         options.stop);
@@ -108,15 +117,16 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   RenderResult result = options.raw ? gradient_raw_result(passes, thread_stats)
                                     : gradient_result(passes, thread_stats, m_settings.alpha, m_settings.reconstruction,
                                                       options, settings);
-  photon_counters.flush(result.stats, "gvpm");
-  result.stats.add("gvpm.iterations", done);
-  if (!media) result.stats.add("gvpm.photon_passes_skipped", done);
+  photon_counters.flush(result.stats, prefix);
+  result.stats.add(prefix + ".iterations", done);
+  if (!media) result.stats.add(prefix + ".photon_passes_skipped", done);
   result.info["media"] = media;
   result.info["kernel_dimension"] = 3;
   result.info["radius_initial"] = r1;
   result.info["radius_final"] = radius;
   result.info["photons_per_iteration"] = m_settings.photons;
-  result.info["distance_samples"] = m_settings.distance_samples;
+  result.info["gather"] = beam ? "beam (Point-Beam 3D)" : "points";
+  if (!beam) result.info["distance_samples"] = m_settings.distance_samples;
   result.info["mixed_shift"] = m_settings.mixed;
   result.wall_seconds = timer.seconds();
   return result;

@@ -12,7 +12,13 @@
 // camera paths run vpm's media-free variant (gvpm.photon_passes_skipped,
 // gvpm.media_skipped; every gradient is then the T_0 fallback of nothing: 0, all in
 // `direct`). Counters `gvpm.*` (gvpm_tracer.h).
+// `--integrator gbre` (G-BRE, Sec. 5.1) is this integrator with GvpmSettings::gather =
+// beam: the primary ray's segments are Point-Beam 3D queries (every photon within r of the
+// segment, its gather point uniform on its chord) shifted as above with R's camera factor
+// |chord| / |chord'|; the later segments use `bre`'s kernel=3d gather; counters `gbre.*`.
 #pragma once
+
+#include <memory>
 
 #include "core/json.h"
 #include "integrators/gvpm/gvpm_settings.h"
@@ -23,8 +29,13 @@ namespace dp::integrators {
 class GvpmIntegrator final : public Integrator {
  public:
   explicit GvpmIntegrator(Settings& settings) : m_settings(GvpmSettings::read(settings)), m_json(settings.to_json()) {}
+  // `gbre`: the settings read by GvpmSettings::read_gbre.
+  static std::unique_ptr<Integrator> make_gbre(Settings& settings) {
+    GvpmSettings g = GvpmSettings::read_gbre(settings);
+    return std::make_unique<GvpmIntegrator>(g, settings.to_json());
+  }
   explicit GvpmIntegrator(const GvpmSettings& settings, core::Json json = {}) : m_settings(settings), m_json(std::move(json)) {}
-  std::string name() const override { return "gvpm"; }
+  std::string name() const override { return m_settings.name(); }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;

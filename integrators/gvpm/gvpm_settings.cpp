@@ -11,6 +11,21 @@ GvpmSettings GvpmSettings::read(Settings& s) {
   GvpmSettings g;
   g.read_common(s, 0.0015);
   g.distance_samples = VpmSettings::read_distance_samples(s, g.distance_samples);
+  g.read_gradient_keys(s);
+  return g;
+}
+
+GvpmSettings GvpmSettings::read_gbre(Settings& s) {
+  GvpmSettings g;
+  g.gather = GvpmGather::beam;
+  g.distance_samples = 1;
+  g.read_common(s, 0.001);
+  g.read_gradient_keys(s);
+  return g;
+}
+
+void GvpmSettings::read_gradient_keys(Settings& s) {
+  GvpmSettings& g = *this;
   g.alpha = float(s.get_double("alpha", double(g.alpha),
                                "screened Poisson weight of the primal image, L1 and L2 (Gruson et al. 2018, Sec. 6.1: 0.2)"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
@@ -19,7 +34,6 @@ GvpmSettings GvpmSettings::read(Settings& s) {
                        "mixed photon shift (Gruson et al. 2018, Eq. 16: photons in both kernels are reused); "
                        "false: every photon takes the simple shift b + (d' - d) and is reconnected");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
-  return g;
 }
 
 }  // namespace dp::integrators

@@ -4,6 +4,8 @@
 // keys: the screened Poisson weight alpha (Gruson et al. 2018, Sec. 6.1: lambda = 0.2),
 // the reconstruction shown (L1, the paper's) and the photon shift (mixed, Eq. 16, or
 // the simple shift). Written to the sidecar.
+// `gbre` (G-BRE, Sec. 5.1) is the same integrator with beam gathers (GvpmGather::beam):
+// `bre`'s keys (radius_scale 0.10%, no distance_samples) and the same gradient keys.
 #pragma once
 
 #include <string>
@@ -19,17 +21,30 @@ enum class GvpmFault : uint8_t {
   none,
   untruncated_offset_pdf,  // the offset's gather density without Eq. 14's truncation 1 / (1 - exp(-sigma_t s'))
   mis_weight_one,          // the pair's MIS weight 1 on both sides (Eq. 19 left out)
+  chord_as_diameter,       // gbre: the gather density 1 / (2r) instead of 1 / |chord| (the chord's clipping and
+                           // its photon's distance from the ray ignored)
 };
+
+// How the primary ray's segments are gathered: `gvpm`'s gather points (distance samples,
+// 3D point queries) or `gbre`'s Point-Beam 3D (every photon within r of the segment, its
+// gather point drawn uniformly on its chord).
+enum class GvpmGather : uint8_t { points, beam };
 
 struct GvpmSettings : MediaPhotonSettings {
   int distance_samples = 40;          // gather points per camera segment in a medium (as vpm)
   float alpha = 0.2f;                 // screened Poisson weight of the primal (Sec. 6.1: lambda = 0.2)
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
   bool mixed = true;                  // mixed photon shift (Eq. 16); false: the simple shift b + (d' - d)
+  GvpmGather gather = GvpmGather::points;
   GvpmFault fault = GvpmFault::none;  // tests only
   gradients::ReconnectFault reconnect_fault = gradients::ReconnectFault::none;  // tests only
 
-  static GvpmSettings read(Settings& s);
+  static GvpmSettings read(Settings& s);       // gvpm
+  static GvpmSettings read_gbre(Settings& s);  // gbre
+  const char* name() const { return gather == GvpmGather::beam ? "gbre" : "gvpm"; }
+
+ private:
+  void read_gradient_keys(Settings& s);
 };
 
 }  // namespace dp::integrators

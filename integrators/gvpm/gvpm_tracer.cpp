@@ -17,34 +17,34 @@ namespace dp::integrators {
 using gradients::ParentKind;
 using gradients::PhotonShiftKind;
 
-void GvpmCounters::flush(core::Stats& stats) const {
-  camera.flush(stats, "gvpm");
-  stats.add("gvpm.samples", samples);
-  stats.add("gvpm.nan_dropped", nan_dropped);
-  stats.add("gvpm.direct_paths", direct_paths);
-  stats.add("gvpm.primary_segments", primary_segments);
-  stats.add("gvpm.gather_points", gather_points);
-  stats.add("gvpm.photons_gathered_primary", photons_gathered);
-  stats.add("gvpm.photons_depth_skipped_primary", depth_skipped);
-  stats.add("gvpm.empty_segments_primary", empty_segments);
-  stats.add("gvpm.shift.attempted", shifts);
-  stats.add("gvpm.shift.null", shift_null);
-  stats.add("gvpm.shift.simple", shift_simple);
-  stats.add("gvpm.shift.reflected", shift_reflected);
-  stats.add("gvpm.shift.reconnections", reconnections);
-  stats.add("gvpm.shift.fail.segment_missing", fail_segment_missing);
-  stats.add("gvpm.shift.fail.medium", fail_medium);
-  stats.add("gvpm.shift.fail.distance", fail_distance);
-  stats.add("gvpm.shift.fail.occluded", fail_occluded);
-  stats.add("gvpm.shift.fail.zero_contribution", fail_zero);
+void GvpmCounters::flush(core::Stats& stats, const std::string& prefix) const {
+  camera.flush(stats, prefix);
+  stats.add(prefix + ".samples", samples);
+  stats.add(prefix + ".nan_dropped", nan_dropped);
+  stats.add(prefix + ".direct_paths", direct_paths);
+  stats.add(prefix + ".primary_segments", primary_segments);
+  stats.add(prefix + ".gather_points", gather_points);
+  stats.add(prefix + ".photons_gathered_primary", photons_gathered);
+  stats.add(prefix + ".photons_depth_skipped_primary", depth_skipped);
+  stats.add(prefix + ".empty_segments_primary", empty_segments);
+  stats.add(prefix + ".shift.attempted", shifts);
+  stats.add(prefix + ".shift.null", shift_null);
+  stats.add(prefix + ".shift.simple", shift_simple);
+  stats.add(prefix + ".shift.reflected", shift_reflected);
+  stats.add(prefix + ".shift.reconnections", reconnections);
+  stats.add(prefix + ".shift.fail.segment_missing", fail_segment_missing);
+  stats.add(prefix + ".shift.fail.medium", fail_medium);
+  stats.add(prefix + ".shift.fail.distance", fail_distance);
+  stats.add(prefix + ".shift.fail.occluded", fail_occluded);
+  stats.add(prefix + ".shift.fail.zero_contribution", fail_zero);
   for (int k = 0; k < gradients::kParentKindCount; ++k) {
     const auto kind = ParentKind(k);
     if (kind == ParentKind::medium || kind == ParentKind::surface || kind == ParentKind::light) continue;
-    stats.add(std::string("gvpm.shift.fail.parent_") + gradients::to_string(kind), fail_parent[size_t(k)]);
+    stats.add(prefix + ".shift.fail.parent_" + gradients::to_string(kind), fail_parent[size_t(k)]);
   }
-  stats.add("gvpm.pairs.shifted", pairs_shifted);
-  stats.add("gvpm.pairs.fallback", pairs_fallback);
-  stats.add("gvpm.pairs.outside_image", outside_image);
+  stats.add(prefix + ".pairs.shifted", pairs_shifted);
+  stats.add(prefix + ".pairs.fallback", pairs_fallback);
+  stats.add(prefix + ".pairs.outside_image", outside_image);
 }
 
 namespace {
@@ -76,7 +76,10 @@ GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, 
       m_photons(photons),
       m_parents(parents),
       m_radius(radius),
-      m_scale(light_paths > 0 ? uniform_kernel(3, double(radius)) / (double(light_paths) * settings.distance_samples) : 0.0),
+      m_beam(settings.gather == GvpmGather::beam),
+      m_scale(light_paths > 0 ? uniform_kernel(3, double(radius)) /
+                                    (double(light_paths) * (m_beam ? 1 : settings.distance_samples))
+                              : 0.0),
       m_later(later),
       m_camera(scene, settings.rr_depth, max_depth) {}
 
@@ -121,6 +124,7 @@ float GvpmTracer::distance_pdf(const scene::HomogeneousMedium& m, float len, flo
 void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
   const int budget = m_max_depth - 1;
   if (budget < 1 || !m_photons || m_photons->empty() || !(seg.len > 0.0f)) return;
+  if (m_beam) return gather_beam(seg, k, rng, sc, counters);
   const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
   const Rgb st = med.sigma_t();
   int channels[3], n_ch = 0;
@@ -162,6 +166,47 @@ void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScrat
     gp.count = uint32_t(sc.terms.size()) - gp.first;
     if (gp.count > 0) sc.points.push_back(gp);
   }
+}
+
+void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc,
+                             GvpmCounters& counters) const {
+  // Point-Beam 3D (Sec. 5.1): every photon within r of the segment, its gather point d
+  // drawn uniformly on its chord (p(t) = 1 / |chord|), then shifted as G-VPM's (the
+  // distance copied, the mixed photon shift keeps |d'b'| <= r).
+  const int budget = m_max_depth - 1;
+  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
+  if (is_black(med.sigma_s)) {
+    ++counters.empty_segments;
+    return;
+  }
+  const scene::HenyeyGreenstein phase(med.phase);
+  const Vec3 to_camera = -seg.ray.d;
+  const float r = m_radius;
+  m_photons->query_beam(seg.ray.o - r * seg.ray.d, seg.ray.d, seg.len + 2.0f * r, r,
+                        [&](const MediumPhoton& ph, float tq, float d2) {
+                          if (ph.medium != seg.medium) return;
+                          if (ph.depth > budget) {
+                            ++counters.depth_skipped;
+                            return;
+                          }
+                          float lo = 0, hi = 0;
+                          if (!point_beam_chord(tq - r, d2, r, seg.len, lo, hi)) return;
+                          const float t = std::min(lo + rng.uniform() * (hi - lo), std::nextafter(hi, lo));
+                          GvpmGatherPoint gp;
+                          gp.segment = k;
+                          gp.t = t;
+                          gp.pdf = m_settings.fault == GvpmFault::chord_as_diameter ? 0.5f / r : 1.0f / (hi - lo);
+                          gp.d = seg.ray.at(t);
+                          gp.first = uint32_t(sc.terms.size());
+                          gp.count = 1;
+                          ++counters.gather_points;
+                          const Rgb v = seg.beta * scene::transmittance(med, t) * float(m_scale / double(gp.pdf)) *
+                                        phase.eval(ph.w, to_camera) * ph.beta;
+                          if (is_black(v) || !(gp.pdf > 0.0f) || !std::isfinite(gp.pdf)) return;
+                          ++counters.photons_gathered;
+                          sc.terms.push_back({&ph, v});
+                          sc.points.push_back(gp);
+                        });
 }
 
 void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradients::GradientBuffers& buf,
@@ -217,7 +262,7 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
     else if (!(gp.t < sc.offset[size_t(gp.segment)].len)) fail = &counters.fail_distance;
     else off = &sc.offset[size_t(gp.segment)];
     float p_off = 0.0f;
-    if (off) {
+    if (off && !m_beam) {
       p_off = distance_pdf(med, off->len, gp.t, truncated);  // Eq. 14 on the offset segment
       if (!(p_off > 0.0f)) {
         fail = &counters.fail_distance;
@@ -228,6 +273,15 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
     Rgb cam_off = Rgb::Zero();
     if (off) cam_off = off->beta * scene::transmittance(med, gp.t) * float(m_scale / double(gp.pdf));
     const double r_cam = off ? double(p_off) / double(gp.pdf) : 0.0;
+    // R's camera factor p'(t) / p(t) for the offset photon b' (gbre: 1 / |chord of b'| on
+    // the offset segment; 0 -- a failed shift -- if t is not on it).
+    auto camera_ratio = [&](const Vec3& b_off) -> double {
+      if (!m_beam) return r_cam;
+      float lo = 0, hi = 0;
+      if (!point_beam_chord(off->ray.o, off->ray.d, off->len, b_off, m_radius, lo, hi) || gp.t < lo || gp.t > hi)
+        return 0.0;
+      return 1.0 / (double(hi - lo) * double(gp.pdf));
+    };
     for (uint32_t i = gp.first; i < gp.first + gp.count; ++i) {
       const GvpmTerm& term = sc.terms[i];
       const Rgbd base_v = term.value.cast<double>();
@@ -247,9 +301,10 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
           ++counters.shift_null;
           const Rgb v = cam_off * phase.eval(ph.w, -off->ray.d) * ph.beta;
           off_v = v.cast<double>();
-          R = r_cam;
-          ok = !is_black(v);
-          if (!ok) ++counters.fail_zero;
+          R = camera_ratio(ph.p);
+          ok = !is_black(v) && R > 0.0;
+          if (!(R > 0.0)) ++counters.fail_distance;
+          else if (!ok) ++counters.fail_zero;
         } else {
           ++(kind == PhotonShiftKind::simple ? counters.shift_simple : counters.shift_reflected);
           const gradients::PhotonParent& parent = (*m_parents)[ph.index];
@@ -264,10 +319,10 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
             } else {
               const Rgb v = cam_off * phase.eval(rec.w, -off->ray.d) * ph.beta * rec.ratio;
               off_v = v.cast<double>();
-              R = r_cam * rec.pdf_ratio;  // Eq. 19: p(Tz) p(Ty) / (p(z) p(y)), |T'| = 1
-              ok = !is_black(v);
+              R = camera_ratio(b_off) * rec.pdf_ratio;  // Eq. 19: p(Tz) p(Ty) / (p(z) p(y)), |T'| = 1
+              ok = !is_black(v) && R > 0.0;
               if (ok) ++counters.reconnections;
-              else ++counters.fail_zero;
+              else ++(R > 0.0 ? counters.fail_zero : counters.fail_distance);
             }
           }
         }

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -48,7 +49,7 @@ struct GvpmCounters {
   int64_t fail_segment_missing = 0, fail_medium = 0, fail_distance = 0, fail_occluded = 0, fail_zero = 0;
   std::array<int64_t, gradients::kParentKindCount> fail_parent{};
   int64_t pairs_shifted = 0, pairs_fallback = 0, outside_image = 0;
-  void flush(core::Stats& stats) const;
+  void flush(core::Stats& stats, const std::string& prefix) const;  // prefix "gvpm" | "gbre"
 };
 
 struct GvpmSegment {
@@ -92,6 +93,7 @@ class GvpmTracer {
   // Eq. 14's density of gather distance t on a segment of length len in medium m (channel mixture).
   float distance_pdf(const scene::HomogeneousMedium& m, float len, float t, bool truncated) const;
   void gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
+  void gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
   void offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h, GvpmCounters& counters) const;
 
   const scene::Scene& m_scene;
@@ -100,7 +102,8 @@ class GvpmTracer {
   const PhotonBvh* m_photons;
   const std::vector<gradients::PhotonParent>* m_parents;
   float m_radius;
-  double m_scale;  // K3(r) / (N M)
+  bool m_beam;     // gbre's Point-Beam 3D gathers
+  double m_scale;  // K3(r) / (N M), M = 1 for gbre
   const MediumGather* m_later;
   MediaCameraTracer m_camera;
 };

@@ -15,6 +15,17 @@ Rgb transmittance(const HomogeneousMedium& m, float d) {
   return Rgb(beer(st[0], d), beer(st[1], d), beer(st[2], d));
 }
 
+Rgb integrated_transmittance(const HomogeneousMedium& m, float a, float b) {
+  const Rgb st = m.sigma_t();
+  const double len = double(b) - double(a);
+  Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    const double s = double(st[c]);
+    out[c] = s > 0.0 ? float(std::exp(-s * double(a)) * -std::expm1(-s * len) / s) : float(len);
+  }
+  return out;
+}
+
 float free_flight_pdf(const HomogeneousMedium& m, float t) {
   const Rgb st = m.sigma_t();
   return (st[0] * beer(st[0], t) + st[1] * beer(st[1], t) + st[2] * beer(st[2], t)) / 3.0f;

@@ -28,6 +28,11 @@ struct FreeFlightSample {
 
 // Beer-Lambert transmittance exp(-sigma_t d), 1 where sigma_t = 0 (also for d = inf).
 Rgb transmittance(const HomogeneousMedium& m, float d);
+// Integral of Tr(t) dt over [a, b] (0 <= a <= b < inf), per channel
+// (exp(-sigma_t a) - exp(-sigma_t b)) / sigma_t = exp(-sigma_t a) (-expm1(-sigma_t (b - a))) / sigma_t,
+// and b - a where sigma_t = 0: the camera side of a 3D-kernel beam query (Gruson et al.
+// 2018, Sec. 5.1, Point-Beam 3D; integrators/bre/bre_gather.h).
+Rgb integrated_transmittance(const HomogeneousMedium& m, float a, float b);
 // The mixture density p(t) of a scatter at distance t (t >= 0).
 float free_flight_pdf(const HomogeneousMedium& m, float t);
 // The probability P(pass) of no scatter before t_max.

@@ -34,6 +34,7 @@
 #include <cstdio>
 
 #include "core/rng.h"
+#include "integrators/bre/bre_integrator.h"
 #include "integrators/gvpm/gvpm_integrator.h"
 #include "integrators/integrator.h"
 #include "integrators/media_photons/photon_tracer.h"
@@ -63,6 +64,8 @@ struct Config {
   int photons = 20000;
   double radius_scale = 0.01, radius_alpha = 0.7;
   int distance_samples = 4;
+  integrators::GvpmGather gather = integrators::GvpmGather::points;  // gvpm | gbre
+  std::string prefix() const { return gather == integrators::GvpmGather::beam ? "gbre" : "gvpm"; }
 };
 
 integrators::RenderResult render(const scene::Scene& s, const Config& c, int iterations, uint64_t seed, int max_depth) {
@@ -73,6 +76,7 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
   g.distance_samples = c.distance_samples;
   g.fault = c.fault;
   g.reconnect_fault = c.reconnect_fault;
+  g.gather = c.gather;
   return integrators::GvpmIntegrator(g).render(s, options(iterations, seed, max_depth));
 }
 
@@ -97,45 +101,54 @@ const Rgb kEnv = test::kFurnaceEnv;
 
 }  // namespace
 
-TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound, gradients summing to 0", "[stat]") {
+namespace {
+
+void furnace_test(integrators::GvpmGather gather) {
+  const bool beam = gather == integrators::GvpmGather::beam;
   constexpr int kRes = 24, kIter = 16, kRuns = 10, kDepth = 1000;
   const auto s = test::medium_furnace(furnace_medium(), kEnv, false, kRes);
   const double diag = double(s->bounds().diagonal());
   // 9 statistics (recon_l2, dx, dy x 3 channels) at 1% family-wise (Sidak), two-sided.
   const double z = boost::math::quantile(boost::math::normal(), 1.0 - (1.0 - std::pow(0.99, 1.0 / 9.0)) / 2.0);
-  // vpm at the same settings: gvpm's primal estimates the same (kernel-biased) expectation.
+  // vpm (gbre: bre with kernel=3d) at the same settings: the primal estimates the same
+  // (kernel-biased) expectation.
   auto vpm_runs = [&](double radius_scale, int photons) {
     Runs runs;
     for (int k = 0; k < kRuns; ++k) {
       integrators::VpmSettings v;
-      v.photons = photons;
-      v.radius_scale = radius_scale;
-      v.radius_alpha = Config{}.radius_alpha;
+      integrators::BreSettings b;
+      v.photons = b.photons = photons;
+      v.radius_scale = b.radius_scale = radius_scale;
+      v.radius_alpha = b.radius_alpha = Config{}.radius_alpha;
       v.distance_samples = Config{}.distance_samples;
-      const auto r = integrators::VpmIntegrator(v).render(*s, options(kIter, 300 + uint64_t(k), kDepth));
+      b.kernel_dim = 3;
+      const auto opt = options(kIter, 300 + uint64_t(k), kDepth);
+      const auto r = beam ? integrators::BreIntegrator(b).render(*s, opt) : integrators::VpmIntegrator(v).render(*s, opt);
       add_run(runs, {channel_mean(r.layers[0].image, 0), channel_mean(r.layers[0].image, 1),
                      channel_mean(r.layers[0].image, 2)});
     }
     return runs;
   };
   const Runs vpm_default = vpm_runs(Config{}.radius_scale, Config{}.photons);
-  auto check = [&](const Config& c, bool expect_pass) {
+  auto check = [&](Config c, bool expect_pass) {
+    c.gather = gather;
+    const std::string p = c.prefix();
     const double shell = shell_length(*s, c.radius_scale * diag);
     Runs runs, primal;
     int64_t shifted = 0, reconnections = 0, nulls = 0, reflected = 0;
     for (int k = 0; k < kRuns; ++k) {
       const auto r = render(*s, c, kIter, 100 + uint64_t(k), kDepth);
-      CHECK(r.stats.get("gvpm.nan_dropped") == 0);
-      shifted += r.stats.get("gvpm.pairs.shifted");
-      reconnections += r.stats.get("gvpm.shift.reconnections");
-      nulls += r.stats.get("gvpm.shift.null");
-      reflected += r.stats.get("gvpm.shift.reflected");
+      CHECK(r.stats.get(p + ".nan_dropped") == 0);
+      shifted += r.stats.get(p + ".pairs.shifted");
+      reconnections += r.stats.get(p + ".shift.reconnections");
+      nulls += r.stats.get(p + ".shift.null");
+      reflected += r.stats.get(p + ".shift.reflected");
       std::vector<double> v;
       for (const char* name : {"recon_l2", "dx", "dy"})
         for (int ch = 0; ch < 3; ++ch) v.push_back(channel_mean(layer(r, name), ch));
       add_run(runs, v);
-      const core::Image& p = layer(r, "primal");
-      add_run(primal, {channel_mean(p, 0), channel_mean(p, 1), channel_mean(p, 2)});
+      const core::Image& pr = layer(r, "primal");
+      add_run(primal, {channel_mean(pr, 0), channel_mean(pr, 1), channel_mean(pr, 2)});
     }
     double worst = 0;  // in units of the critical value
     for (size_t i = 0; i < runs.size(); ++i) {
@@ -147,14 +160,14 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
       const double bound = gradient ? 0.0 : 0.5 * double(furnace_medium().sigma_s[ch]) * double(kEnv[ch]) * shell;
       const double excess = (std::abs(m.mean - expect) - bound) / se;
       worst = std::max(worst, excess / z);
-      std::printf("[gvpm furnace] fault %d %s ch %d: mean %.5f (expect %.2f, bias bound %.4f, se %.5f) excess/se %.2f\n",
-                  int(c.fault), i < 3 ? "recon_l2" : i < 6 ? "dx" : "dy", ch, m.mean, expect, bound, se, excess);
+      std::printf("[%s furnace] fault %d %s ch %d: mean %.5f (expect %.2f, bias bound %.4f, se %.5f) excess/se %.2f\n",
+                  p.c_str(), int(c.fault), i < 3 ? "recon_l2" : i < 6 ? "dx" : "dy", ch, m.mean, expect, bound, se, excess);
     }
     const double vs_vpm =
         test::sidak_welch(primal, c.radius_scale == Config{}.radius_scale ? vpm_default : vpm_runs(c.radius_scale, c.photons), 0.01);
-    std::printf("[gvpm furnace] fault %d: primal vs vpm worst |t|/crit %.2f; pairs shifted %lld, reconnections %lld, null "
+    std::printf("[%s furnace] fault %d: primal vs %s worst |t|/crit %.2f; pairs shifted %lld, reconnections %lld, null "
                 "shifts %lld, reflected %lld; worst excess/(se z) %.2f (z %.2f)\n",
-                int(c.fault), vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
+                p.c_str(), int(c.fault), beam ? "bre 3d" : "vpm", vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
                 (long long)reflected, worst, z);
     worst = std::max(worst, vs_vpm);
     CHECK(shifted > 0);
@@ -164,17 +177,26 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
     else CHECK(worst > 1.0);
   };
   check(Config{}, true);
-  {  // kernels wider than a pixel's offset: null and reflected (mixed) shifts occur
-    Config wide;
-    wide.radius_scale = 0.04;
-    wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
-    check(wide, true);
-  }
-  for (auto f : {GvpmFault::untruncated_offset_pdf, GvpmFault::mis_weight_one}) {
+  // Kernels wider than a pixel's offset: null and reflected (mixed) shifts occur.
+  Config wide;
+  wide.radius_scale = 0.04;
+  wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
+  check(wide, true);
+  for (auto f : {beam ? GvpmFault::chord_as_diameter : GvpmFault::untruncated_offset_pdf, GvpmFault::mis_weight_one}) {
     Config c;
     c.fault = f;
     check(c, false);
   }
+}
+
+}  // namespace
+
+TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound, gradients summing to 0", "[stat]") {
+  furnace_test(integrators::GvpmGather::points);
+}
+
+TEST_CASE("gbre: the volumetric furnace: reconstruction within bre 3d's bias bound, gradients summing to 0", "[stat]") {
+  furnace_test(integrators::GvpmGather::beam);
 }
 
 namespace {
@@ -224,9 +246,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
   return ref;
 }
 
-}  // namespace
-
-TEST_CASE("gvpm: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
+void media_box_test(integrators::GvpmGather gather) {
   const auto s = test::media_box(true, kBoxRes);
   const Runs& ref = volpath_reference(*s);
   auto runs_of = [&](const Config& c) {
@@ -234,41 +254,52 @@ TEST_CASE("gvpm: L2 reconstruction and dx/dy blocks agree with volpath on a box 
     int64_t shifted = 0, fallback = 0;
     for (int k = 0; k < kBoxRuns; ++k) {
       const auto r = render(*s, c, kBoxIterations, 700 + uint64_t(k), kBoxDepth);
-      shifted += r.stats.get("gvpm.pairs.shifted");
-      fallback += r.stats.get("gvpm.pairs.fallback");
+      shifted += r.stats.get(c.prefix() + ".pairs.shifted");
+      fallback += r.stats.get(c.prefix() + ".pairs.fallback");
       std::vector<double> v = gradient_blocks(layer(r, "recon_l2"), &layer(r, "dx"), &layer(r, "dy"), &layer(r, "direct"));
       add_run(runs, v);
     }
-    std::printf("[gvpm media box] fault %d: pairs shifted %lld, fallback %lld\n", int(c.fault), (long long)shifted,
-                (long long)fallback);
+    std::printf("[%s media box] fault %d: pairs shifted %lld, fallback %lld\n", c.prefix().c_str(), int(c.fault),
+                (long long)shifted, (long long)fallback);
     return runs;
   };
   Config c;
   c.photons = 5000;
   c.radius_scale = 0.01;
   c.radius_alpha = 1.0;
+  c.gather = gather;
   const Runs runs = runs_of(c);
   const double mean_ratio = test::welch_ratio(test::moments(runs[0]), test::moments(ref[0]), 0.01);
   const Runs blocks(runs.begin() + 1, runs.end()), ref_blocks(ref.begin() + 1, ref.end());
   const double block_ratio = test::sidak_welch(blocks, ref_blocks, 0.01);
-  std::printf("[gvpm vs volpath, media box] L2 image mean %.4f vs %.4f: |t|/crit %.2f; dx/dy blocks worst |t|/crit %.2f\n",
-              test::moments(runs[0]).mean, test::moments(ref[0]).mean, mean_ratio, block_ratio);
+  std::printf("[%s vs volpath, media box] L2 image mean %.4f vs %.4f: |t|/crit %.2f; dx/dy blocks worst |t|/crit %.2f\n",
+              c.prefix().c_str(), test::moments(runs[0]).mean, test::moments(ref[0]).mean, mean_ratio, block_ratio);
   CHECK(mean_ratio < 1.0);
   CHECK(block_ratio < 1.0);
   // Planted defects, each rejected by the image mean or the blocks.
   for (int d = 0; d < 3; ++d) {
     Config bad = c;
     if (d == 0) bad.fault = GvpmFault::mis_weight_one;
-    if (d == 1) bad.fault = GvpmFault::untruncated_offset_pdf;
+    if (d == 1) bad.fault = c.gather == integrators::GvpmGather::beam ? GvpmFault::chord_as_diameter : GvpmFault::untruncated_offset_pdf;
     if (d == 2) bad.reconnect_fault = gradients::ReconnectFault::no_volume_factor;
     const Runs bad_runs = runs_of(bad);
     const Runs bad_blocks(bad_runs.begin() + 1, bad_runs.end());
     const double bad_mean = test::welch_ratio(test::moments(bad_runs[0]), test::moments(ref[0]), 0.01);
     const double bad_ratio = test::sidak_welch(bad_blocks, ref_blocks, 0.01);
-    std::printf("[gvpm vs volpath, media box] defect %d: L2 mean |t|/crit %.2f, dx/dy blocks worst |t|/crit %.2f\n", d,
-                bad_mean, bad_ratio);
+    std::printf("[%s vs volpath, media box] defect %d: L2 mean |t|/crit %.2f, dx/dy blocks worst |t|/crit %.2f\n",
+                c.prefix().c_str(), d, bad_mean, bad_ratio);
     CHECK(std::max(bad_mean, bad_ratio) > 1.0);
   }
+}
+
+}  // namespace
+
+TEST_CASE("gvpm: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
+  media_box_test(integrators::GvpmGather::points);
+}
+
+TEST_CASE("gbre: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
+  media_box_test(integrators::GvpmGather::beam);
 }
 
 TEST_CASE("gvpm: without media no photon is traced; with media seed-only determinism and parts add up", "[unit]") {
@@ -365,4 +396,35 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
     for (size_t i = 0; i < w.size(); ++i) worst = std::max(worst, ((a[i] - w[i]).abs() / (w[i].abs() + 1e-300)).maxCoeff());
   }
   CHECK(worst < 1e-12);
+}
+
+TEST_CASE("gbre: from the registry; without media no photon; with media seed-only determinism", "[unit]") {
+  integrators::Settings settings;
+  settings.set("photons", "3000");
+  settings.set("radius_scale", "0.02");
+  auto in = integrators::make_integrator("gbre", settings);
+  CHECK(in->name() == "gbre");
+  {
+    const auto s = test::lit_box(nullptr, nullptr, 16);
+    const auto r = in->render(*s, options(2, 4, kBoxDepth));
+    CHECK(r.stats.get("gbre.photon_passes_skipped") == 2);
+    CHECK(r.stats.get("gbre.photon_paths") == 0);
+    CHECK(r.stats.get("gbre.primary_segments") + r.stats.get("gbre.shift.attempted") == 0);
+  }
+  const auto s = test::media_box(true, 16);
+  auto opt = options(2, 21, kBoxDepth);
+  opt.threads = 1;
+  auto one = in->render(*s, opt);
+  opt.threads = 2;
+  const auto two = in->render(*s, opt);
+  REQUIRE(one.stats.get("gbre.gather_points") > 0);
+  REQUIRE(one.stats.get("gbre.shift.reconnections") > 0);
+  CHECK(one.stats.get("gvpm.gather_points") == 0);
+  CHECK(one.info["gather"].dump().find("beam") != std::string::npos);
+  bool same = true;
+  for (const char* name : {"primal", "dx", "dy", "direct"}) {
+    const core::Image &a = layer(one, name), &b = layer(two, name);
+    for (size_t i = 0; i < a.size(); ++i) same = same && (a[i] == b[i]).all();
+  }
+  CHECK(same);
 }

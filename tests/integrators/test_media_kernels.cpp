@@ -9,6 +9,9 @@
 //    weighted by K3 estimates rho and a beam query of length l weighted by K2 estimates
 //    rho l (z-tests from the Poisson count variance); the same tests reject the other
 //    dimension's kernel (the defects VpmFault::kernel_2d_norm / BreFault::kernel_3d_norm);
+//    the Point-Beam 3D estimate (bre kernel=3d, gbre: each photon within r of the beam
+//    weighted by its chord's length and K3, from the query widened by r at both ends)
+//    estimates rho l too, and rejects the 2D normalization and the unwidened query;
 //  * vpm's truncated-exponential gather distances (Gruson et al. 2018, Eq. 14) follow
 //    their pdf (chi-square) and the pdf integrates to 1 over the segment.
 #include <boost/math/distributions/chi_squared.hpp>
@@ -126,7 +129,7 @@ TEST_CASE("media kernels: point and beam estimates of a uniform photon field are
   const float side = 4.0f;
   const double rho = kPhotons / double(side * side * side);
   const double r = 0.2, len = 1.5;
-  double point = 0, beam = 0;
+  double point = 0, beam = 0, beam3 = 0, beam3_narrow = 0;
   int points = 0, beams = 0;
   for (int field = 0; field < kFields; ++field) {
     integrators::PhotonBvh bvh;
@@ -144,11 +147,28 @@ TEST_CASE("media kernels: point and beam estimates of a uniform photon field are
         bvh.query_beam(Vec3(1.2f, 1.0f + 0.5f * float(i), 1.0f + 0.5f * float(j)), Vec3(1, 0, 0), float(len), float(r),
                        [&](const MediumPhoton&, float, float) { ++m; });
         beam += m * integrators::uniform_kernel(2, r);
+        // Point-Beam 3D: sum of chord lengths x K3, over the query widened by r (and, the
+        // defect, without widening: photons near the ends are missed).
+        const Vec3 o(1.2f, 1.0f + 0.5f * float(i), 1.0f + 0.5f * float(j)), x(1, 0, 0);
+        const float rf = float(r), lf = float(len);
+        double chords = 0, narrow = 0;
+        bvh.query_beam(o - rf * x, x, lf + 2.0f * rf, rf, [&](const MediumPhoton&, float t, float d2) {
+          float lo = 0, hi = 0;
+          if (integrators::point_beam_chord(t - rf, d2, rf, lf, lo, hi)) chords += double(hi - lo);
+        });
+        bvh.query_beam(o, x, lf, rf, [&](const MediumPhoton&, float t, float d2) {
+          float lo = 0, hi = 0;
+          if (integrators::point_beam_chord(t, d2, rf, lf, lo, hi)) narrow += double(hi - lo);
+        });
+        beam3 += chords * integrators::uniform_kernel(3, r);
+        beam3_narrow += narrow * integrators::uniform_kernel(3, r);
         ++beams;
       }
   }
   point /= points;
   beam /= beams;
+  beam3 /= beams;
+  beam3_narrow /= beams;
   // A count n ~ Poisson(rho V): n K has mean rho (V K = 1) and variance rho K.
   const double se_point = std::sqrt(rho * integrators::uniform_kernel(3, r) / points);
   const double se_beam = std::sqrt(rho * len * integrators::uniform_kernel(2, r) / beams);
@@ -156,6 +176,17 @@ TEST_CASE("media kernels: point and beam estimates of a uniform photon field are
               beam, rho * len, se_beam);
   CHECK(std::abs(point - rho) < z_crit(1e-3) * se_point);
   CHECK(std::abs(beam - rho * len) < z_crit(1e-3) * se_beam);
+  // Point-Beam 3D: the sum of chord x K3 over a Poisson field has mean rho int chord K3 dV
+  // = rho l and variance rho K3^2 int chord^2 dV <= rho K3^2 (l + 2r) 2 pi r^4 (a full
+  // chord 2 sqrt(r^2 - q^2) over the disk of radius r: 2 pi r^4; the ends clip it).
+  const double k3 = integrators::uniform_kernel(3, r);
+  const double se_beam3 = std::sqrt(rho * k3 * k3 * (len + 2 * r) * 2 * double(kPi) * std::pow(r, 4) / beams);
+  std::printf("[normalization] point-beam 3D %.1f (rho l %.1f +- %.1f), unwidened query %.1f\n", beam3, rho * len,
+              se_beam3, beam3_narrow);
+  CHECK(std::abs(beam3 - rho * len) < z_crit(1e-3) * se_beam3);
+  CHECK(std::abs(beam3_narrow - rho * len) > z_crit(1e-3) * se_beam3);
+  const double beam3_2d = beam3 * integrators::uniform_kernel(2, r) / k3;
+  CHECK(std::abs(beam3_2d - rho * len) > z_crit(1e-3) * se_beam3);
   // The defects: the point query with the 2D kernel, the beam query with the 3D kernel
   // (off by the factor 4 / (3 r) or its inverse).
   const double point_2d = point * integrators::uniform_kernel(2, r) / integrators::uniform_kernel(3, r);

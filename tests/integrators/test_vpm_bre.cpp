@@ -5,7 +5,9 @@
 //    per pixel by 1/2 sigma_s env x the camera ray's length within r of the sphere (a
 //    kernel centred inside a convex medium loses at most half of itself outside); the
 //    image mean over independent runs must lie within that bound plus the runs' z-test
-//    margin. Rejects each estimator's deliberate defects (VpmFault, BreFault);
+//    margin (for bre with kernel=3d too: its Point-Beam 3D estimate is vpm's with the
+//    distance integrated out, so the same bound). Rejects each estimator's deliberate
+//    defects (VpmFault, BreFault, the latter for both kernels);
 //  * convergence on a box with smoke, a filled glass ball and a fog: the image mean agrees
 //    with volpath's (Welch test over independent runs), and the estimated squared bias of
 //    the 4x4-block means against volpath (mean difference^2 minus both variances) is
@@ -51,7 +53,17 @@ struct Config {
   int photons = 20000;
   double radius_scale = 0.01, alpha = 0.7;
   int distance_samples = 4;
+  int kernel_dim = 2;  // bre: 2 (Jarosz et al. 2008) or 3 (Point-Beam 3D, gbre's primal)
 };
+
+// vpm, bre (2D kernel) and bre with kernel=3d.
+std::vector<Config> estimators() {
+  std::vector<Config> out(3);
+  out[0].name = "vpm";
+  out[1].name = out[2].name = "bre";
+  out[2].kernel_dim = 3;
+  return out;
+}
 
 integrators::RenderResult render(const scene::Scene& s, const Config& c, int iterations, uint64_t seed, int max_depth) {
   auto common = [&](integrators::MediaPhotonSettings& m) {
@@ -69,6 +81,7 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
   integrators::BreSettings b;
   common(b);
   b.fault = c.bre_fault;
+  b.kernel_dim = c.kernel_dim;
   return integrators::BreIntegrator(b).render(s, options(iterations, seed, max_depth));
 }
 
@@ -106,8 +119,8 @@ TEST_CASE("vpm, bre: the volumetric furnace renders the environment within the k
   constexpr int kRes = 24, kIter = 4, kRuns = 6, kDepth = 1000;
   const auto s = test::medium_furnace(furnace_medium(), kEnv, false, kRes);
   const double diag = double(s->bounds().diagonal());
-  // 2 estimators x 3 channels at 1% family-wise (Sidak), two-sided, on the runs' means.
-  const double z = boost::math::quantile(boost::math::normal(), 1.0 - (1.0 - std::pow(0.99, 1.0 / 6.0)) / 2.0);
+  // 3 estimators x 3 channels at 1% family-wise (Sidak), two-sided, on the runs' means.
+  const double z = boost::math::quantile(boost::math::normal(), 1.0 - (1.0 - std::pow(0.99, 1.0 / 9.0)) / 2.0);
   auto check = [&](const Config& c, bool expect_pass) {
     const double r1 = c.radius_scale * diag;  // the largest radius (alpha < 1 shrinks it)
     const double shell = shell_length(*s, r1);
@@ -127,8 +140,8 @@ TEST_CASE("vpm, bre: the volumetric furnace renders the environment within the k
       const double se = std::sqrt(m.var / double(m.n));
       const double bound = 0.5 * double(furnace_medium().sigma_s[ch]) * double(kEnv[ch]) * shell;
       const double excess = (std::abs(m.mean - double(kEnv[ch])) - bound) / se;
-      std::printf("[%s furnace] fault %d/%d ch %d: mean %.4f (env %.2f, bias bound %.4f, se %.4f) excess/se %.2f\n",
-                  c.name.c_str(), int(c.vpm_fault), int(c.bre_fault), ch, m.mean, double(kEnv[ch]), bound, se, excess);
+      std::printf("[%s%s furnace] fault %d/%d ch %d: mean %.4f (env %.2f, bias bound %.4f, se %.4f) excess/se %.2f\n",
+                  c.name.c_str(), c.kernel_dim == 3 ? " 3d" : "", int(c.vpm_fault), int(c.bre_fault), ch, m.mean, double(kEnv[ch]), bound, se, excess);
       worst = std::max(worst, excess);
     }
     CHECK(stored > 0);
@@ -136,11 +149,7 @@ TEST_CASE("vpm, bre: the volumetric furnace renders the environment within the k
     if (expect_pass) CHECK(worst < z);
     else CHECK(worst > z);
   };
-  for (const char* name : {"vpm", "bre"}) {
-    Config c;
-    c.name = name;
-    check(c, true);
-  }
+  for (const Config& c : estimators()) check(c, true);
   // The defects (each rejected): the other dimension's kernel normalization, no
   // transmittance to the gather point, vpm's distance pdf without Eq. 14's truncation.
   for (auto f : {integrators::VpmFault::kernel_2d_norm, integrators::VpmFault::no_transmittance,
@@ -150,12 +159,14 @@ TEST_CASE("vpm, bre: the volumetric furnace renders the environment within the k
     c.vpm_fault = f;
     check(c, false);
   }
-  for (auto f : {integrators::BreFault::kernel_3d_norm, integrators::BreFault::no_transmittance}) {
-    Config c;
-    c.name = "bre";
-    c.bre_fault = f;
-    check(c, false);
-  }
+  for (int dim : {2, 3})
+    for (auto f : {integrators::BreFault::kernel_3d_norm, integrators::BreFault::no_transmittance}) {
+      Config c;
+      c.name = "bre";
+      c.kernel_dim = dim;
+      c.bre_fault = f;
+      check(c, false);
+    }
 }
 
 namespace {
@@ -211,9 +222,8 @@ double paired_bias_t(const Runs& a, const Runs& b, const Runs& ref) {
 TEST_CASE("vpm, bre: converge to volpath's image on a box with media", "[stat]") {
   const auto s = test::media_box(true, kBoxRes);
   const Runs& ref = volpath_reference(*s);
-  for (const char* name : {"vpm", "bre"}) {
-    Config c;
-    c.name = name;
+  for (Config c : estimators()) {
+    const std::string name = c.name + (c.kernel_dim == 3 ? " 3d" : "");
     c.photons = kBoxPhotons;
     const Runs runs = estimator_runs(*s, c, 4, 700);
     const double mean_ratio = test::welch_ratio(test::moments(runs.back()), test::moments(ref.back()), 0.01);
@@ -227,7 +237,7 @@ TEST_CASE("vpm, bre: converge to volpath's image on a box with media", "[stat]")
     const double t_crit = boost::math::quantile(boost::math::complement(boost::math::students_t(double(rb.size() - 2)), 0.01));
     std::printf("[%s vs volpath, media box] image mean %.4f vs %.4f: |t|/crit %.2f; bias^2 at r x4 %.3g, x1 %.3g: "
                 "paired t %.2f (crit %.2f)\n",
-                name, test::moments(runs.back()).mean, test::moments(ref.back()).mean, mean_ratio, block_bias2(rb, ref),
+                name.c_str(), test::moments(runs.back()).mean, test::moments(ref.back()).mean, mean_ratio, block_bias2(rb, ref),
                 block_bias2(rs, ref), t, t_crit);
     CHECK(mean_ratio < 1.0);
     CHECK(t > t_crit);
