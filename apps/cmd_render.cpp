@@ -117,6 +117,7 @@ void run_render(const RenderArgs& a, const MpiWorld* world) {
     integrators::check_parts(scene->camera().width(), scene->camera().height(), opt);
   }
 
+  integrators::check_scene_support(*integrator, *scene);
   log::info("rendering ", a.scene, " with ", name, " (", scene->camera().width(), "x", scene->camera().height(),
             a.time > 0 ? ", " + std::to_string(a.time) + " s" : ", " + std::to_string(opt.spp) + " spp", ")");
   integrators::RenderResult result = integrator->render(*scene, opt);

@@ -18,6 +18,7 @@ PreparedIntegrator prepare_integrator(const scene::Scene& scene, const std::stri
   PreparedIntegrator p;
   try {
     p.integrator = integrators::make_integrator(name, s);
+    integrators::check_scene_support(*p.integrator, scene);
   } catch (const Error& e) {
     if (e.file().empty()) throw ValueError(e.message(), file, line);
     throw;

@@ -79,6 +79,10 @@ StressReport run_stress(const StressOptions& options) {
         const StressScene s = make_stress_scene(family, v, options.seed, resolution);
         integrators::Settings settings;
         auto integrator = make_variant(name, settings);
+        if (s.scene->caps().has_media && !integrator->renders_media()) {  // it would render the media as vacuum
+          c.skipped = "no media support";
+          break;
+        }
         integrators::RenderOptions opt;
         opt.spp = spp;
         opt.seed = options.seed + uint64_t(v);
@@ -132,7 +136,9 @@ std::string format_stress_report(const StressReport& report) {
                   c.integrator.c_str(), c.renders, static_cast<long long>(c.samples_dropped),
                   static_cast<unsigned long long>(c.nonfinite_pixels), c.max_value,
                   c.max_layer.empty() ? "-" : c.max_layer.c_str(), c.seconds,
-                  c.nonfinite_pixels ? ("  <- non-finite in: " + c.nonfinite_layers).c_str() : "");
+                  c.nonfinite_pixels ? ("  <- non-finite in: " + c.nonfinite_layers).c_str()
+                  : c.skipped.empty() ? ""
+                                      : ("  (skipped: " + c.skipped + ")").c_str());
     out += buf;
   }
   std::string fails;

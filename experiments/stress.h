@@ -36,6 +36,7 @@ struct StressCase {
   std::map<std::string, int64_t> failures;  // failure/outlier counters (non-zero only)
   std::map<std::string, int64_t> maxima;    // counters containing "max" (max over renders)
   double seconds = 0;
+  std::string skipped;  // why the integrator was not run on this family (renders = 0), e.g. no media support
 };
 
 struct StressReport {

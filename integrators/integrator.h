@@ -56,7 +56,16 @@ class Integrator {
   // (options: spp requested, threads). The default refuses with a one-line error.
   virtual bool supports_raw() const { return false; }
   virtual RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const;
+  // Whether render() transports light through participating media. An integrator that
+  // does not would render a scene with media as if it were vacuum: check_scene_support
+  // refuses that combination.
+  virtual bool renders_media() const { return false; }
 };
+
+// Throws dp::ValueError (one line, naming the integrators that can) when `integrator`
+// cannot render `scene` correctly: today, a scene with media and an integrator without
+// media support.
+void check_scene_support(const Integrator& integrator, const scene::Scene& scene);
 
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>(Settings&)>;
 

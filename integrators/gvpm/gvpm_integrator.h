@@ -38,6 +38,7 @@ class GvpmIntegrator final : public Integrator {
   std::string name() const override { return m_settings.name(); }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
+  bool renders_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

@@ -16,6 +16,7 @@ class PathIntegrator final : public Integrator {
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   // --partial: the raw sum "radiance" and count "spp"; finish() divides them per pixel.
   bool supports_raw() const override { return true; }
+  bool renders_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:
