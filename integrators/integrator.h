@@ -60,11 +60,14 @@ class Integrator {
   // does not would render a scene with media as if it were vacuum: check_scene_support
   // refuses that combination.
   virtual bool renders_media() const { return false; }
+  // ... including heterogeneous (grid) media (scene/media/grid_tracking.h).
+  virtual bool renders_grid_media() const { return false; }
 };
 
 // Throws dp::ValueError (one line, naming the integrators that can) when `integrator`
 // cannot render `scene` correctly: today, a scene with media and an integrator without
-// media support.
+// media support, or a scene with grid media and an integrator that renders homogeneous
+// media only.
 void check_scene_support(const Integrator& integrator, const scene::Scene& scene);
 
 using IntegratorFactory = std::function<std::unique_ptr<Integrator>(Settings&)>;

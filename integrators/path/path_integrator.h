@@ -17,6 +17,7 @@ class PathIntegrator final : public Integrator {
   // --partial: the raw sum "radiance" and count "spp"; finish() divides them per pixel.
   bool supports_raw() const override { return true; }
   bool renders_media() const override { return true; }
+  bool renders_grid_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

@@ -6,6 +6,7 @@
 #include "integrators/path/path_tracer.h"  // power_heuristic
 #include "pathspace/scatter.h"
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
 
@@ -26,6 +27,7 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.shadow_null_crossings", shadow_null_crossings);
   stats.add("volpath.fail.null_limit", null_limit);
   stats.add("volpath.media_skipped", media_skipped);
+  stats.add("volpath.grid_flights", grid_flights);
 }
 
 namespace {
@@ -51,15 +53,19 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
       m_has_media(scene.caps().has_media),
       m_camera_medium(scene.camera_medium()) {}
 
-Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, VolpathCounters& c) const {
+Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& c) const {
   Rgb tr = Rgb::Ones();
   SurfaceHit h;
   for (int crossings = 0;; ++crossings) {
     const bool found = m_scene.intersect(r, h);
     // Beer-Lambert over the part of the segment inside this medium (Gruson et al. 2018,
     // Eq. 2: tau of the NEE edge).
-    if (medium >= 0 && m_settings.fault != VolpathFault::nee_without_transmittance)
-      tr *= scene::transmittance(m_scene.media()[size_t(medium)], found ? h.t : r.tmax);
+    // A grid medium: ratio tracking (grid_tracking.h), an unbiased estimate of the same.
+    if (medium >= 0 && m_settings.fault != VolpathFault::nee_without_transmittance) {
+      const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
+      const float len = found ? h.t : r.tmax;
+      tr *= med.heterogeneous() ? scene::transmittance_grid(med, r.o, r.d, len, rng) : scene::transmittance(med, len);
+    }
     if (!found) return tr;
     if (!scene::is_index_matched(h)) return Rgb::Zero();  // an opaque or refractive surface blocks it
     if (crossings >= kMaxNullCrossings) {
@@ -94,7 +100,7 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
   Rgb tr = Rgb::Ones();
   if constexpr (kMedia) {
     const int light_side = scene::medium_toward(hit, ds.wi, medium, m_camera_medium);
-    tr = shadow_transmittance(r, light_side, finite ? &ds.p : nullptr, c);
+    tr = shadow_transmittance(r, light_side, finite ? &ds.p : nullptr, rng, c);
     if (is_black(tr)) return Rgb::Zero();
   } else {
     (void)medium;
@@ -131,7 +137,7 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   const bool finite = std::isfinite(ds.dist);
   r.tmax = finite ? std::max(0.0f, ds.dist - 2.0f * scene::Scene::epsilon_at(ds.p))
                   : kInfinity;
-  const Rgb tr = shadow_transmittance(r, medium, finite ? &ds.p : nullptr, c);
+  const Rgb tr = shadow_transmittance(r, medium, finite ? &ds.p : nullptr, rng, c);
   if (is_black(tr)) return Rgb::Zero();
   const float light_pdf = pmf * ds.pdf;
   const bool no_mis = ds.delta || m_settings.fault == VolpathFault::medium_nee_without_mis;
@@ -160,9 +166,14 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if constexpr (kMedia) {
       if (medium >= 0) {
         const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
-        const float u_channel = rng.uniform(), u_distance = rng.uniform();
-        const scene::FreeFlightSample ff =
-            scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+        scene::FreeFlightSample ff;
+        if (med.heterogeneous()) {  // delta tracking (grid_tracking.h)
+          ++c.grid_flights;
+          ff = scene::sample_free_flight_grid(med, ray.o, ray.d, found ? hit.t : kInfinity, rng);
+        } else {
+          const float u_channel = rng.uniform(), u_distance = rng.uniform();
+          ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+        }
         Rgb w = ff.weight;
         if (m_settings.fault == VolpathFault::pass_without_probability && !ff.scattered)
           w = scene::transmittance(med, ff.t);

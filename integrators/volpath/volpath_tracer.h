@@ -42,6 +42,7 @@ struct VolpathCounters {
   int64_t shadow_null_crossings = 0;   // ... by shadow rays
   int64_t null_limit = 0;              // paths or shadow rays cut after kMaxNullCrossings boundaries
   int64_t media_skipped = 0;           // paths traced without any medium code (scene without media)
+  int64_t grid_flights = 0;            // free flights by delta tracking (grid media)
   void flush(core::Stats& stats) const;
 };
 
@@ -66,7 +67,7 @@ class VolpathTracer {
   // Transmittance of the shadow ray `r` that starts in `medium` (through index-matched
   // boundaries up to r.tmax); 0 if a surface blocks it. `target`: the light point, or
   // nullptr for a light at infinity.
-  Rgb shadow_transmittance(Ray r, int medium, const Vec3* target, VolpathCounters& counters) const;
+  Rgb shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& counters) const;
 
  private:
   template <bool kMedia>

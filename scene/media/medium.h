@@ -4,9 +4,11 @@
 // in: medium_interface.h. Rendered by `volpath` (`path` delegates to it).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/math.h"
+#include "scene/media/density_grid.h"
 
 namespace dp::scene {
 
@@ -15,12 +17,19 @@ struct PhaseFunctionDesc {
   float g = 0;  // Henyey-Greenstein asymmetry in (-1, 1)
 };
 
+// A homogeneous medium, or -- with `density` set -- a heterogeneous one whose coefficients
+// at x are density(x) x sigma_a, sigma_s (a grid medium: grid_tracking.h samples and
+// attenuates it; its sigma_t is grey, equal in the three channels, checked by the
+// loaders). Only `volpath` (and `path`, which delegates to it) renders grid media
+// (Integrator::renders_grid_media).
 struct HomogeneousMedium {
   std::string name;
   Rgb sigma_a = Rgb::Zero();
   Rgb sigma_s = Rgb::Zero();
   PhaseFunctionDesc phase;
+  std::shared_ptr<const DensityGrid> density;  // null: homogeneous
   Rgb sigma_t() const { return sigma_a + sigma_s; }
+  bool heterogeneous() const { return density != nullptr; }
 };
 
 }  // namespace dp::scene
