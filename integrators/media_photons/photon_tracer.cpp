@@ -1,6 +1,7 @@
 #include "integrators/media_photons/photon_tracer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/rng.h"
 #include "core/thread_pool.h"
@@ -57,9 +58,42 @@ PhotonParent light_parent(const scene::Scene& scene, core::Rng rng, std::vector<
   return parent;
 }
 
+// Distance along o + t d (d unit) to where the ray leaves the scene's bounds grown by one
+// diagonal on every side (the clip of an infinite beam); <= 0 if it starts outside.
+float tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d) {
+  const Bounds3& b = scene.bounds();
+  if (!b.valid()) return 0.0f;
+  const float grow = std::max(b.diagonal(), 1.0f);
+  float t_exit = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0f) continue;
+    const float lo = (b.lo[a] - grow - o[a]) / d[a], hi = (b.hi[a] + grow - o[a]) / d[a];
+    t_exit = std::min(t_exit, std::max(lo, hi));
+  }
+  return t_exit;
+}
+
+// The short beam of the segment the free flight just sampled (photon_tracer.h): from the
+// ray's origin over `length` (the flight's end), with the throughput before its weight.
+void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMedium& med, const Ray& ray, float length,
+                        const Rgb& beta, int s, int medium, std::vector<MediumBeam>& beams, BeamTraceCounters& bc) {
+  if (is_black(med.sigma_s) || is_black(beta)) return;  // nothing scatters out of it
+  if (!std::isfinite(length)) {
+    length = tracer_beam_clip(scene, ray.o, ray.d);
+    ++bc.clipped;
+  }
+  if (!is_finite(beta) || !ray.o.allFinite() || !ray.d.allFinite() || !std::isfinite(length)) {
+    ++bc.dropped;
+    return;
+  }
+  if (!(length > 0.0f)) return;  // an empty segment
+  beams.push_back(MediumBeam{ray.o, ray.d, length, beta, int16_t(s), int16_t(medium), uint32_t(beams.size())});
+  ++bc.stored;
+}
+
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
                std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
-               std::vector<pathspace::BidirVertex>& scratch) {
+               std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc) {
   ++c.paths;
   Ray ray;
   Rgb beta;
@@ -91,6 +125,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
       const float u_channel = rng.uniform(), u_distance = rng.uniform();
       const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      if (beams) tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, *beams, bc);
       beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
       if (is_black(beta)) return;
       if (ff.scattered) {
@@ -99,8 +134,10 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
           ++c.nan_dropped;
           return;
         }
-        out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium), uint32_t(out.size())});
-        ++c.stored;
+        if (params.store_photons) {
+          out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium), uint32_t(out.size())});
+          ++c.stored;
+        }
         if (parents) {
           parents->push_back(parent);
           parent = PhotonParent{};
@@ -165,10 +202,13 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
 
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
-                          std::vector<PhotonParent>* parents) {
+                          std::vector<PhotonParent>* parents, std::vector<MediumBeam>* beams,
+                          BeamTraceCounters* beam_counters) {
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
   std::vector<std::vector<PhotonParent>> parent_parts(parents ? static_cast<size_t>(chunks) : 0);
+  std::vector<std::vector<MediumBeam>> beam_parts(beams ? static_cast<size_t>(chunks) : 0);
+  std::vector<BeamTraceCounters> beam_chunk_counters(static_cast<size_t>(chunks));
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
   core::parallel_for(
@@ -178,8 +218,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
         const int64_t n = std::min(kChunk, params.paths - k * kChunk);
         std::vector<pathspace::BidirVertex> scratch;
         std::vector<PhotonParent>* pp = parents ? &parent_parts[size_t(k)] : nullptr;
+        std::vector<MediumBeam>* bp = beams ? &beam_parts[size_t(k)] : nullptr;
         for (int64_t i = 0; i < n; ++i)
-          trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch);
+          trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch, bp,
+                    beam_chunk_counters[size_t(k)]);
         done[size_t(k)] = 1;
       },
       stop);
@@ -192,11 +234,23 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
     parents->clear();
     parents->reserve(total);
   }
+  if (beams) {
+    size_t beam_total = 0;
+    for (const auto& p : beam_parts) beam_total += p.size();
+    beams->clear();
+    beams->reserve(beam_total);
+  }
   for (size_t k = 0; k < parts.size(); ++k) {
     const uint32_t offset = uint32_t(out.size());
     for (MediumPhoton& ph : parts[k]) ph.index += offset;  // chunk-local -> global
     out.insert(out.end(), parts[k].begin(), parts[k].end());
     if (parents) parents->insert(parents->end(), parent_parts[k].begin(), parent_parts[k].end());
+    if (beams) {
+      const uint32_t beam_offset = uint32_t(beams->size());
+      for (MediumBeam& b : beam_parts[k]) b.index += beam_offset;
+      beams->insert(beams->end(), beam_parts[k].begin(), beam_parts[k].end());
+      if (beam_counters) *beam_counters += beam_chunk_counters[k];
+    }
     counters += chunk_counters[k];
   }
   return true;
