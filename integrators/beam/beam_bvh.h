@@ -27,7 +27,7 @@ double beam_segment_distance2(const Vec3& p0, const Vec3& u, double S, const Vec
 
 class BeamBvh {
  public:
-  static constexpr uint32_t kLeafSize = 4;
+  static constexpr uint32_t kLeafSize = 16;  // per-piece box tests in a leaf; fewer nodes (measured)
   // One piece of a beam: the points a + v w, v in [v0, v1].
   struct Piece {
     uint32_t beam = 0;  // index into beams()

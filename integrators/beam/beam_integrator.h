@@ -3,7 +3,7 @@
 // and beams"; the primal Beam of Gruson et al. 2018, Sec. 5.2 and 6.1). Per iteration
 // `photons` light paths are traced as for `vpm` (media_photons/photon_tracer.h) and every
 // segment they travel inside a scattering medium is kept as a short photon beam (no photon
-// points); the beams go into a BVH over pieces of at most max(8 r, diag / 128)
+// points); the beams go into a BVH over pieces of at most max(16 r, diag / 128)
 // (beam_bvh.h). Camera paths are `vpm`'s (volpath on surfaces,
 // media_photons/media_camera.h); each camera segment inside a medium queries the beams
 // within r and adds the Beam-Beam 3D (`kernel: 3d`, default) or Beam x Beam 1D
