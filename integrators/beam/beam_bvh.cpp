@@ -33,18 +33,18 @@ void BeamBvh::build(std::vector<MediumBeam> beams, float max_piece) {
   if (m_beams.empty()) return;
   const bool split = max_piece > 0.0f && std::isfinite(max_piece);
   size_t total = 0;
-  for (const MediumBeam& b : m_beams) total += split ? size_t(std::ceil(b.length / max_piece)) : 1;
+  for (const MediumBeam& b : m_beams) total += split ? size_t(std::ceil((b.length - b.begin) / max_piece)) : 1;
   m_pieces.reserve(total);
   for (uint32_t i = 0; i < uint32_t(m_beams.size()); ++i) {
-    const float len = m_beams[i].length;
-    if (!split || !(len > max_piece)) {
-      m_pieces.push_back(Piece{i, 0.0f, len});
+    const float begin = m_beams[i].begin, len = m_beams[i].length;
+    if (!split || !(len - begin > max_piece)) {
+      m_pieces.push_back(Piece{i, begin, len});
       continue;
     }
-    // [k p, (k + 1) p] with the last one ending at the beam's length: a partition (each
-    // piece's v1 is the next one's v0, computed alike).
+    // [begin + k p, begin + (k + 1) p] with the last one ending at the beam's length: a
+    // partition of [begin, length] (each piece's v1 is the next one's v0, computed alike).
     for (uint32_t k = 0;; ++k) {
-      const float v0 = float(k) * max_piece, v1 = float(k + 1) * max_piece;
+      const float v0 = begin + float(k) * max_piece, v1 = begin + float(k + 1) * max_piece;
       if (!(v1 < len)) {
         m_pieces.push_back(Piece{i, v0, len});
         break;

@@ -3,7 +3,7 @@
 // within r of the camera segment o + t d, t in [0, t_max] (the exact segment-segment
 // distance, in double: a beam farther than r cannot contribute to either kernel).
 // Long beams are split into pieces [v0, v1] of at most `max_piece` (a partition of
-// [0, length]): a wall-to-wall beam in thin smoke has an AABB spanning the room, which
+// [begin, length], the beam's kept part, photon_tracer.h): a wall-to-wall beam in thin smoke has an AABB spanning the room, which
 // every camera ray would hit; a piece's box is at most max_piece + 2r wide. The query
 // reports pieces (each within r of the segment), and the estimators integrate each
 // piece's range (beam_gather.h), so the pieces of one beam add up to the whole beam.

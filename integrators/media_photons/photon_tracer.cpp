@@ -58,19 +58,28 @@ PhotonParent light_parent(const scene::Scene& scene, core::Rng rng, std::vector<
   return parent;
 }
 
-// Distance along o + t d (d unit) to where the ray leaves the scene's bounds grown by one
-// diagonal on every side (the clip of an infinite beam); <= 0 if it starts outside.
-float tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d) {
+// The part [t0, t1] of the ray o + t d (d unit) inside the scene's bounds grown by one
+// diagonal on every side (the clip of a beam, photon_tracer.h); t0 > t1 if it misses.
+void tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1) {
   const Bounds3& b = scene.bounds();
-  if (!b.valid()) return 0.0f;
-  const float grow = std::max(b.diagonal(), 1.0f);
-  float t_exit = kInfinity;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0f) continue;
-    const float lo = (b.lo[a] - grow - o[a]) / d[a], hi = (b.hi[a] + grow - o[a]) / d[a];
-    t_exit = std::min(t_exit, std::max(lo, hi));
+  t0 = 0.0f;
+  t1 = kInfinity;
+  if (!b.valid()) {
+    t0 = 1.0f;
+    t1 = 0.0f;
+    return;
   }
-  return t_exit;
+  const float grow = std::max(b.diagonal(), 1.0f);
+  for (int a = 0; a < 3; ++a) {
+    const float lo = b.lo[a] - grow, hi = b.hi[a] + grow;
+    if (d[a] == 0.0f) {
+      if (o[a] < lo || o[a] > hi) t0 = kInfinity;
+      continue;
+    }
+    const float ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
 }
 
 // The short beam of the segment the free flight just sampled (photon_tracer.h): from the
@@ -78,16 +87,18 @@ float tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d) 
 void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMedium& med, const Ray& ray, float length,
                         const Rgb& beta, int s, int medium, std::vector<MediumBeam>& beams, BeamTraceCounters& bc) {
   if (is_black(med.sigma_s) || is_black(beta)) return;  // nothing scatters out of it
-  if (!std::isfinite(length)) {
-    length = tracer_beam_clip(scene, ray.o, ray.d);
-    ++bc.clipped;
-  }
-  if (!is_finite(beta) || !ray.o.allFinite() || !ray.d.allFinite() || !std::isfinite(length)) {
+  if (!is_finite(beta) || !ray.o.allFinite() || !ray.d.allFinite() || std::isnan(length)) {
     ++bc.dropped;
     return;
   }
   if (!(length > 0.0f)) return;  // an empty segment
-  beams.push_back(MediumBeam{ray.o, ray.d, length, beta, int16_t(s), int16_t(medium), uint32_t(beams.size())});
+  float t0 = 0.0f, t1 = 0.0f;
+  tracer_beam_clip(scene, ray.o, ray.d, t0, t1);
+  const float begin = std::max(t0, 0.0f), end = std::min(t1, length);
+  if (begin > 0.0f || end < length) ++bc.clipped;
+  if (!(end > begin) || !std::isfinite(end)) return;  // wholly outside the grown bounds
+  beams.push_back(
+      MediumBeam{ray.o, ray.d, end, begin, beta, int16_t(s), int16_t(medium), uint32_t(beams.size())});
   ++bc.stored;
 }
 

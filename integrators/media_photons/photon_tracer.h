@@ -36,9 +36,12 @@
 //    the surface when the flight passed), with the throughput beta_a at a (before the
 //    free-flight weight, sigma_s not included) and the segment's depth s (a photon at the
 //    beam's end has the same s). Recording draws no random number: photons, paths and
-//    counters are bit-identical with and without beams. A flight to infinity (a channel
-//    with sigma_t = 0 in an unbounded medium) is clipped where it leaves the scene's
-//    bounds grown by one diagonal (the only truncation; counted).
+//    counters are bit-identical with and without beams. Beams are clipped to the scene's
+//    bounds grown by one diagonal on every side (counted): in a closed medium this never
+//    happens; in an unbounded one (a camera-medium fog) a flight may end 1e4 units away or
+//    never (a channel with sigma_t = 0), and the light scattered outside that box is left
+//    out (the only truncation: a bias of unbounded media; the kept part is [begin, length]
+//    of the original parameter, so Tr(v) / P(v) stays that of the whole flight).
 //    Short beams are unbiased for the fluence along the segment (derivation in
 //    beam/beam_gather.h): a point at distance v < t_surf from a is covered iff the free
 //    flight passed it, with probability P(v) = 1/3 sum_c exp(-sigma_t[c] v) (free_flight.h's
@@ -70,7 +73,8 @@ struct MediumPhoton {
 struct MediumBeam {
   Vec3 a{0, 0, 0};         // start
   Vec3 w{0, 0, 1};         // unit direction the light travels
-  float length = 0;        // to the scattering event or the surface (finite)
+  float length = 0;        // to the scattering event or the surface (finite; clipped)
+  float begin = 0;         // the kept part is v in [begin, length] (begin > 0 only when clipped)
   Rgb beta = Rgb::Zero();  // throughput per emitted path at a (no sigma_s)
   int16_t depth = 0;       // the segment's index from the light (MediumPhoton::depth's convention)
   int16_t medium = -1;     // index into Scene::media()
@@ -79,7 +83,7 @@ struct MediumBeam {
 
 struct BeamTraceCounters {
   int64_t stored = 0;    // beams recorded
-  int64_t clipped = 0;   // infinite flights clipped to the grown scene bounds
+  int64_t clipped = 0;   // flights clipped to the grown scene bounds (or dropped: wholly outside)
   int64_t dropped = 0;   // non-finite start, direction or weight: not recorded
   BeamTraceCounters& operator+=(const BeamTraceCounters& o) {
     stored += o.stored;
