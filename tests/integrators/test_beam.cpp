@@ -294,6 +294,7 @@ TEST_CASE("beam: recording beams leaves the photons unchanged; photons end beams
   CHECK(bc.stored == int64_t(beams.size()));
   CHECK(beams.size() > plain.size());  // every photon ends a beam; passes make more
   CHECK(bc.dropped == 0);
+  CHECK(bc.clipped == 0);  // a closed box: no beam reaches the grown bounds
   // Every photon is the end of a beam of its depth and medium, with the photon's
   // throughput = the beam's times the scatter's weight (so >= 0 where the beam's is).
   int64_t matched = 0;
