@@ -95,7 +95,7 @@ uint32_t BeamBvh::build_node(uint32_t first, uint32_t count, int depth) {
   m_nodes[index].hi = b.hi;
   // Median splits halve the count: the depth stays below the traversal stack's bound.
   if (count <= kLeafSize || depth >= kStack / 2 - 2) {
-    m_nodes[index].first = first;
+    m_nodes[index].first_or_right = first;
     m_nodes[index].count = count;
     return index;
   }
@@ -116,7 +116,7 @@ uint32_t BeamBvh::build_node(uint32_t first, uint32_t count, int depth) {
   });
   build_node(first, half, depth + 1);
   const uint32_t right = build_node(first + half, count - half, depth + 1);
-  m_nodes[index].right = right;
+  m_nodes[index].first_or_right = right;
   return index;
 }
 

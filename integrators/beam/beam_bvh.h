@@ -64,7 +64,7 @@ class BeamBvh {
       const Node& n = m_nodes[stack[--top]];
       if (!slab_hit(n.lo, n.hi, o, inv, tm, grow)) continue;
       if (n.count > 0) {
-        for (uint32_t k = n.first; k < n.first + n.count; ++k) {
+        for (uint32_t k = n.first_or_right; k < n.first_or_right + n.count; ++k) {
           const Piece& pc = m_pieces[k];
           const MediumBeam& b = m_beams[pc.beam];
           const Vec3 p0 = b.a + pc.v0 * b.w, p1 = b.a + pc.v1 * b.w;
@@ -73,17 +73,18 @@ class BeamBvh {
         }
         continue;
       }
-      stack[top++] = n.right;
+      stack[top++] = n.first_or_right;
       stack[top++] = uint32_t(&n - m_nodes.data()) + 1;  // the left child
     }
   }
 
  private:
   static constexpr int kStack = 96;
+  // 32 bytes, two to a cache line (the query is bound by node and piece loads).
   struct Node {
     Vec3 lo{0, 0, 0}, hi{0, 0, 0};
-    uint32_t first = 0, count = 0;  // leaf: pieces [first, first + count)
-    uint32_t right = 0;             // inner (count 0): the left child is the next node
+    uint32_t first_or_right = 0;  // leaf: pieces [first, first + count); inner: the right child
+    uint32_t count = 0;           // 0: inner node, the left child is the next node
   };
   // The ray's parameter range inside the box [lo - r, hi + r] overlaps [0, t_max].
   static bool slab_hit(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inv, float t_max, float r) {
@@ -102,6 +103,7 @@ class BeamBvh {
   Vec3 piece_point(const Piece& p, float v) const { return m_beams[p.beam].a + v * m_beams[p.beam].w; }
   uint32_t build_node(uint32_t first, uint32_t count, int depth);
 
+  static_assert(sizeof(Node) == 32);
   std::vector<Node> m_nodes;
   std::vector<Piece> m_pieces;
   std::vector<MediumBeam> m_beams;
