@@ -10,7 +10,7 @@ namespace dp::integrators {
 
 using scene::SurfaceHit;
 
-void MediaCameraCounters::flush(core::Stats& stats, const std::string& prefix) const {
+void MediaCameraCounters::flush(core::Stats& stats, const std::string& prefix, const GatherCounterNames& names) const {
   stats.add(prefix + ".rays", surface.rays);
   stats.add(prefix + ".shadow_rays", surface.shadow_rays);
   stats.add(prefix + ".rr_terminated", surface.rr_terminated);
@@ -19,10 +19,12 @@ void MediaCameraCounters::flush(core::Stats& stats, const std::string& prefix) c
   stats.add(prefix + ".fail.null_limit", surface.null_limit);
   stats.add(prefix + ".media_skipped", surface.media_skipped);
   stats.add(prefix + ".medium_segments", gather.segments);
-  stats.add(prefix + ".queries", gather.queries);
-  stats.add(prefix + ".photons_gathered", gather.photons);
-  stats.add(prefix + ".photons_depth_skipped", gather.depth_skipped);
+  stats.add(prefix + "." + names.queries, gather.queries);
+  stats.add(prefix + "." + names.gathered, gather.photons);
+  stats.add(prefix + "." + names.depth_skipped, gather.depth_skipped);
   stats.add(prefix + ".empty_segments", gather.empty_segments);
+  if (names.candidates) stats.add(prefix + "." + names.candidates, gather.candidates);
+  if (names.parallel) stats.add(prefix + "." + names.parallel, gather.parallel);
 }
 
 MediaCameraTracer::MediaCameraTracer(const scene::Scene& scene, int rr_depth, int max_depth)

@@ -29,6 +29,18 @@ struct GatherCounters {
   int64_t photons = 0;      // photons that contributed (inside a kernel, depth allowed)
   int64_t depth_skipped = 0;   // photons inside a kernel left out by the path-length limit
   int64_t empty_segments = 0;  // segments skipped: nothing scatters along them (sigma_t = 0 or infinite)
+  int64_t candidates = 0;      // beam-beam candidates (`beam`: beams within r of the segment, depth allowed)
+  int64_t parallel = 0;        // `beam` (1D kernel): candidates parallel to the segment, no closest point
+};
+
+// Sidecar names of the gather counters (<prefix>.<name>): the photon estimators' by
+// default; `beam` names its own (beam_integrator.h). A null name is not written.
+struct GatherCounterNames {
+  const char* queries = "queries";
+  const char* gathered = "photons_gathered";
+  const char* depth_skipped = "photons_depth_skipped";
+  const char* candidates = nullptr;
+  const char* parallel = nullptr;
 };
 
 // The in-scattered radiance along one camera segment inside medium `medium`: the ray
@@ -44,7 +56,7 @@ class MediumGather {
 struct MediaCameraCounters {
   VolpathCounters surface;  // rays, shadow rays, surface vertices, crossings (volpath's fields)
   GatherCounters gather;
-  void flush(core::Stats& stats, const std::string& prefix) const;
+  void flush(core::Stats& stats, const std::string& prefix, const GatherCounterNames& names = {}) const;
 };
 
 class MediaCameraTracer {

@@ -33,6 +33,22 @@ PhotonTraceParams photon_pass_params(const MediaPhotonSettings& settings, const 
 
 RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
                                   const MediaPhotonSettings& settings, int kernel_dim, const MakeGather& make_gather) {
+  PhotonBvh bvh;
+  MediaLightPass pass;
+  pass.prepare = [&](const PhotonTraceParams& tp, float r, PhotonTraceCounters& pc, core::Stats&,
+                     std::unique_ptr<MediumGather>& gather) {
+    std::vector<MediumPhoton> photons;
+    if (!trace_medium_photons(scene, tp, options.stop, photons, pc)) return false;
+    bvh.build(std::move(photons));
+    gather = make_gather(bvh, r, tp.paths);
+    return true;
+  };
+  pass.release = [&] { bvh.release(); };
+  return render_media_passes(scene, options, prefix, settings, kernel_dim, pass);
+}
+
+RenderResult render_media_passes(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
+                                 const MediaPhotonSettings& settings, int kernel_dim, const MediaLightPass& pass) {
   const auto& cam = scene.camera();
   const int w = cam.width(), h = cam.height();
   const int threads = resolve_threads(options);
@@ -48,7 +64,7 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
   std::vector<Rgbd> total(size_t(w) * size_t(h), Rgbd::Zero()), iter(total.size());
   std::vector<core::Stats> thread_stats(static_cast<size_t>(threads)), iter_stats(static_cast<size_t>(threads));
   PhotonTraceCounters photon_counters;
-  PhotonBvh bvh;
+  core::Stats pass_stats;
   core::Timer timer;
   core::Progress progress(prefix, timed ? 1000 : target, options.quiet);
   int64_t done = 0;
@@ -62,16 +78,14 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
     const int64_t global = share.global(done);
     const float r = float(progressive_radius(r1, global, settings.radius_alpha, kernel_dim));
     PhotonTraceCounters pc;
+    core::Stats ps;
     std::unique_ptr<MediumGather> gather;
     if (media) {  // no photon is traced for a scene without media
       const PhotonTraceParams tp = photon_pass_params(settings, options, global, threads);
-      std::vector<MediumPhoton> photons;
-      if (!trace_medium_photons(scene, tp, options.stop, photons, pc)) {
+      if (!pass.prepare(tp, r, pc, ps, gather)) {
         partial = true;
         break;
       }
-      bvh.build(std::move(photons));
-      gather = make_gather(bvh, r, tp.paths);
     }
     std::fill(iter.begin(), iter.end(), Rgbd::Zero());
     for (auto& s : iter_stats) s = core::Stats{};
@@ -88,13 +102,13 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
             return is_finite(L);  // a non-finite sample is counted and dropped, never splatted
           });
           core::Stats& st = iter_stats[size_t(thread)];
-          counters.flush(st, prefix);
+          counters.flush(st, prefix, pass.names);
           st.add(prefix + ".nan_dropped", dropped);
           st.add(prefix + ".camera_paths", int64_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
           tile_done[size_t(ti)] = 1;
         },
         options.stop);
-    bvh.release();
+    if (pass.release) pass.release();
     if (std::find(tile_done.begin(), tile_done.end(), 0) != tile_done.end()) {  // dropped whole
       partial = true;
       break;
@@ -102,6 +116,7 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
     for (size_t i = 0; i < total.size(); ++i) total[i] += iter[i];
     for (size_t t = 0; t < thread_stats.size(); ++t) thread_stats[t].merge(iter_stats[t]);
     photon_counters += pc;
+    pass_stats.merge(ps);
     radius = r;
     ++done;
     if (timed) progress.set_fraction(std::min(1.0, timer.seconds() / options.time_budget));
@@ -112,6 +127,7 @@ RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions
   RenderResult result = finish_iterations(finish_radiance, w, h, std::move(total), done, target, partial, options);
   for (const auto& s : thread_stats) result.stats.merge(s);
   photon_counters.flush(result.stats, prefix);
+  result.stats.merge(pass_stats);
   result.stats.add(prefix + ".iterations", done);
   if (!media) result.stats.add(prefix + ".photon_passes_skipped", done);
   result.info["media"] = media;

@@ -8,7 +8,8 @@
 // ("radiance" sums, "spp" = iterations per pixel), so `--partial`/`--mpi`/`merge` work:
 // part k of n runs the global iterations k, k + n, ... with their own radii and streams.
 // On a scene without media no photon is traced and the camera paths run without medium
-// code (counters <prefix>.media_skipped, <prefix>.photon_paths = 0).
+// code (counters <prefix>.media_skipped, <prefix>.photon_paths = 0). The driver itself
+// is render_media_passes; render_media_photons gives it the photon-point pass.
 #pragma once
 
 #include <functional>
@@ -29,6 +30,24 @@ using MakeGather =
 
 RenderResult render_media_photons(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
                                   const MediaPhotonSettings& settings, int kernel_dim, const MakeGather& make_gather);
+
+// The light pass of one iteration of a density estimator in media, for
+// render_media_passes: `prepare` traces tp's light paths, builds what the gather needs
+// and sets `gather` for kernel radius `radius` (false: interrupted by options.stop);
+// `stats` are the pass's own counters (added to the result for complete iterations
+// only); `release` frees the pass's data after the iteration's camera paths.
+struct MediaLightPass {
+  std::function<bool(const PhotonTraceParams& tp, float radius, PhotonTraceCounters& pc, core::Stats& stats,
+                     std::unique_ptr<MediumGather>& gather)>
+      prepare;
+  std::function<void()> release;
+  GatherCounterNames names;  // how the camera's gather counters are named
+};
+
+// The iteration driver behind render_media_photons (`vpm`, `bre`) with any light pass
+// (`beam`'s photon beams): the same iterations, radii, streams, tiles and counters.
+RenderResult render_media_passes(const scene::Scene& scene, const RenderOptions& options, const std::string& prefix,
+                                 const MediaPhotonSettings& settings, int kernel_dim, const MediaLightPass& pass);
 
 // First iteration's radius: radius_scale x the scene's bounding-box diagonal.
 double initial_media_radius(const scene::Scene& scene, const MediaPhotonSettings& settings);

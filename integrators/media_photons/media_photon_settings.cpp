@@ -4,11 +4,12 @@
 
 namespace dp::integrators {
 
-void MediaPhotonSettings::read_common(Settings& s, double radius_default) {
+void MediaPhotonSettings::read_common(Settings& s, double radius_default, const char* photons_doc) {
   radius_scale = radius_default;
   photons = s.get_int("photons", photons,
-                      "light paths traced per iteration; photons are stored at their medium scattering events "
-                      "(Gruson et al. 2018 use 1M)");
+                      photons_doc ? photons_doc
+                                  : "light paths traced per iteration; photons are stored at their medium scattering "
+                                    "events (Gruson et al. 2018 use 1M)");
   radius_scale = s.get_double("radius_scale", radius_scale,
                               "first iteration's kernel radius as a fraction of the scene's bounding-box diagonal "
                               "(Gruson et al. 2018, Sec. 6.1: 0.15% for VPM, 0.10% otherwise)");

@@ -22,8 +22,9 @@ struct MediaPhotonSettings {
   double radius_alpha = 0.7;     // progressive reduction (volume_kernel.h); 1 keeps r fixed
   int rr_depth = 5;              // Russian roulette after this many segments (photons and camera paths)
 
-  // Reads the keys with `radius_default` as radius_scale's default.
-  void read_common(Settings& s, double radius_default);
+  // Reads the keys with `radius_default` as radius_scale's default (the current `photons`
+  // is its default; `photons_doc` replaces its help text when given).
+  void read_common(Settings& s, double radius_default, const char* photons_doc = nullptr);
 };
 
 }  // namespace dp::integrators

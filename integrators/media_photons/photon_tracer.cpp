@@ -1,6 +1,7 @@
 #include "integrators/media_photons/photon_tracer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/rng.h"
 #include "core/thread_pool.h"
@@ -57,9 +58,53 @@ PhotonParent light_parent(const scene::Scene& scene, core::Rng rng, std::vector<
   return parent;
 }
 
+// The part [t0, t1] of the ray o + t d (d unit) inside the scene's bounds grown by one
+// diagonal on every side (the clip of a beam, photon_tracer.h); t0 > t1 if it misses.
+void tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1) {
+  const Bounds3& b = scene.bounds();
+  t0 = 0.0f;
+  t1 = kInfinity;
+  if (!b.valid()) {
+    t0 = 1.0f;
+    t1 = 0.0f;
+    return;
+  }
+  const float grow = std::max(b.diagonal(), 1.0f);
+  for (int a = 0; a < 3; ++a) {
+    const float lo = b.lo[a] - grow, hi = b.hi[a] + grow;
+    if (d[a] == 0.0f) {
+      if (o[a] < lo || o[a] > hi) t0 = kInfinity;
+      continue;
+    }
+    const float ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+}
+
+// The short beam of the segment the free flight just sampled (photon_tracer.h): from the
+// ray's origin over `length` (the flight's end), with the throughput before its weight.
+void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMedium& med, const Ray& ray, float length,
+                        const Rgb& beta, int s, int medium, std::vector<MediumBeam>& beams, BeamTraceCounters& bc) {
+  if (is_black(med.sigma_s) || is_black(beta)) return;  // nothing scatters out of it
+  if (!is_finite(beta) || !ray.o.allFinite() || !ray.d.allFinite() || std::isnan(length)) {
+    ++bc.dropped;
+    return;
+  }
+  if (!(length > 0.0f)) return;  // an empty segment
+  float t0 = 0.0f, t1 = 0.0f;
+  tracer_beam_clip(scene, ray.o, ray.d, t0, t1);
+  const float begin = std::max(t0, 0.0f), end = std::min(t1, length);
+  if (begin > 0.0f || end < length) ++bc.clipped;
+  if (!(end > begin) || !std::isfinite(end)) return;  // wholly outside the grown bounds
+  beams.push_back(
+      MediumBeam{ray.o, ray.d, end, begin, beta, int16_t(s), int16_t(medium), uint32_t(beams.size())});
+  ++bc.stored;
+}
+
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
                std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
-               std::vector<pathspace::BidirVertex>& scratch) {
+               std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc) {
   ++c.paths;
   Ray ray;
   Rgb beta;
@@ -91,6 +136,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
       const float u_channel = rng.uniform(), u_distance = rng.uniform();
       const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      if (beams) tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, *beams, bc);
       beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
       if (is_black(beta)) return;
       if (ff.scattered) {
@@ -99,8 +145,10 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
           ++c.nan_dropped;
           return;
         }
-        out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium), uint32_t(out.size())});
-        ++c.stored;
+        if (params.store_photons) {
+          out.push_back(MediumPhoton{p, ray.d, beta, int16_t(s), int16_t(medium), uint32_t(out.size())});
+          ++c.stored;
+        }
         if (parents) {
           parents->push_back(parent);
           parent = PhotonParent{};
@@ -165,10 +213,13 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
 
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
-                          std::vector<PhotonParent>* parents) {
+                          std::vector<PhotonParent>* parents, std::vector<MediumBeam>* beams,
+                          BeamTraceCounters* beam_counters) {
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
   std::vector<std::vector<PhotonParent>> parent_parts(parents ? static_cast<size_t>(chunks) : 0);
+  std::vector<std::vector<MediumBeam>> beam_parts(beams ? static_cast<size_t>(chunks) : 0);
+  std::vector<BeamTraceCounters> beam_chunk_counters(static_cast<size_t>(chunks));
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
   core::parallel_for(
@@ -178,8 +229,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
         const int64_t n = std::min(kChunk, params.paths - k * kChunk);
         std::vector<pathspace::BidirVertex> scratch;
         std::vector<PhotonParent>* pp = parents ? &parent_parts[size_t(k)] : nullptr;
+        std::vector<MediumBeam>* bp = beams ? &beam_parts[size_t(k)] : nullptr;
         for (int64_t i = 0; i < n; ++i)
-          trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch);
+          trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch, bp,
+                    beam_chunk_counters[size_t(k)]);
         done[size_t(k)] = 1;
       },
       stop);
@@ -192,11 +245,23 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
     parents->clear();
     parents->reserve(total);
   }
+  if (beams) {
+    size_t beam_total = 0;
+    for (const auto& p : beam_parts) beam_total += p.size();
+    beams->clear();
+    beams->reserve(beam_total);
+  }
   for (size_t k = 0; k < parts.size(); ++k) {
     const uint32_t offset = uint32_t(out.size());
     for (MediumPhoton& ph : parts[k]) ph.index += offset;  // chunk-local -> global
     out.insert(out.end(), parts[k].begin(), parts[k].end());
     if (parents) parents->insert(parents->end(), parent_parts[k].begin(), parent_parts[k].end());
+    if (beams) {
+      const uint32_t beam_offset = uint32_t(beams->size());
+      for (MediumBeam& b : beam_parts[k]) b.index += beam_offset;
+      beams->insert(beams->end(), beam_parts[k].begin(), beam_parts[k].end());
+      if (beam_counters) *beam_counters += beam_chunk_counters[k];
+    }
     counters += chunk_counters[k];
   }
   return true;

@@ -29,6 +29,23 @@
 //    light endpoint is re-drawn from a copy of the path's stream by
 //    pathspace::light_subpath, which draws exactly as emit_light_ray does, so the photons
 //    and their weights are bit-identical with and without records.
+//  * Photon beams (`beam`; Jarosz et al. 2011; only when asked for, as the parent records):
+//    every segment a light path travels inside a medium with sigma_s > 0 is also stored as
+//    a short beam, from its start a (the light, a surface vertex, a scattering event or an
+//    index-matched boundary) to the free flight's end (the sampled scattering event, or
+//    the surface when the flight passed), with the throughput beta_a at a (before the
+//    free-flight weight, sigma_s not included) and the segment's depth s (a photon at the
+//    beam's end has the same s). Recording draws no random number: photons, paths and
+//    counters are bit-identical with and without beams. Beams are clipped to the scene's
+//    bounds grown by one diagonal on every side (counted): in a closed medium this never
+//    happens; in an unbounded one (a camera-medium fog) a flight may end 1e4 units away or
+//    never (a channel with sigma_t = 0), and the light scattered outside that box is left
+//    out (the only truncation: a bias of unbounded media; the kept part is [begin, length]
+//    of the original parameter, so Tr(v) / P(v) stays that of the whole flight).
+//    Short beams are unbiased for the fluence along the segment (derivation in
+//    beam/beam_gather.h): a point at distance v < t_surf from a is covered iff the free
+//    flight passed it, with probability P(v) = 1/3 sum_c exp(-sigma_t[c] v) (free_flight.h's
+//    one-channel mixture), so the weight beta_a Tr(v) / P(v) has expectation beta_a Tr(v).
 #pragma once
 
 #include <atomic>
@@ -51,6 +68,31 @@ struct MediumPhoton {
   uint32_t index = 0;      // position in the traced order (the parent records' index)
 };
 
+// One light-path segment inside a medium (a short photon beam): the points a + v w,
+// v in [0, length]. See the header comment.
+struct MediumBeam {
+  Vec3 a{0, 0, 0};         // start
+  Vec3 w{0, 0, 1};         // unit direction the light travels
+  float length = 0;        // to the scattering event or the surface (finite; clipped)
+  float begin = 0;         // the kept part is v in [begin, length] (begin > 0 only when clipped)
+  Rgb beta = Rgb::Zero();  // throughput per emitted path at a (no sigma_s)
+  int16_t depth = 0;       // the segment's index from the light (MediumPhoton::depth's convention)
+  int16_t medium = -1;     // index into Scene::media()
+  uint32_t index = 0;      // position in the traced order
+};
+
+struct BeamTraceCounters {
+  int64_t stored = 0;    // beams recorded
+  int64_t clipped = 0;   // flights clipped to the grown scene bounds (or dropped: wholly outside)
+  int64_t dropped = 0;   // non-finite start, direction or weight: not recorded
+  BeamTraceCounters& operator+=(const BeamTraceCounters& o) {
+    stored += o.stored;
+    clipped += o.clipped;
+    dropped += o.dropped;
+    return *this;
+  }
+};
+
 struct PhotonTraceCounters {
   int64_t paths = 0, stored = 0, surface_events = 0, null_crossings = 0, rr_terminated = 0, null_limit = 0;
   int64_t nan_dropped = 0;  // photons with a non-finite weight, never stored
@@ -65,12 +107,16 @@ struct PhotonTraceParams {
   uint64_t seed = 0;
   int64_t iteration = 0;
   int threads = 1;
+  bool store_photons = true;  // false: no photon is kept (`beam` keeps only beams; same paths)
 };
 
 // Traces params.paths light paths into `out` (cleared); false if `stop` interrupted it.
-// With `parents`, (*parents)[photon.index] is each photon's parent record.
+// With `parents`, (*parents)[photon.index] is each photon's parent record. With `beams`,
+// every medium segment's short beam (in chunk order, beam.index its position), counted in
+// *beam_counters (required with `beams`).
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
-                          std::vector<gradients::PhotonParent>* parents = nullptr);
+                          std::vector<gradients::PhotonParent>* parents = nullptr,
+                          std::vector<MediumBeam>* beams = nullptr, BeamTraceCounters* beam_counters = nullptr);
 
 }  // namespace dp::integrators

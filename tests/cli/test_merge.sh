@@ -36,7 +36,7 @@ same_exr() {
 sed 's/resolution: \[256, 256\]/resolution: [72, 40]/' scenes/cornell_glossy.yaml > "$tmp/scene.yaml"
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path volpath vpm bre gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
+for integrator in path volpath vpm bre beam gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=("$bin" render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
@@ -69,7 +69,7 @@ check "gpt: merged sidecar sums the parts' counters" \
 # Time-budgeted parts (a job array with a wall-clock limit per task): each part runs its
 # own passes (streams of passes k, n + k, ... of a single --time render; test_parts.cpp),
 # the merge has every pixel sampled and is not partial.
-for integrator in path volpath vpm bre gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
+for integrator in path volpath vpm bre beam gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
   for k in 1 2; do
     "$bin" render "$tmp/scene.yaml" --integrator $integrator --time 0.3 --seed 3 --max-depth 5 --threads 1 --quiet \
       --partial --part $k/2 --out "$tmp/t$integrator$k.exr"

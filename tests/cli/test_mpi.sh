@@ -2,7 +2,7 @@
 # `render --mpi` under mpirun (issue 17): with N ranks on 2 cores (oversubscribed), the
 # image equals the single-process render bit for bit (each rank renders the same
 # (pass, tile) work units as `--part r+1/N`; rank 0 adds the buffers in rank order) for
-# `path`, `volpath`, `vpm`, `bre`, `gvpm`, `gbre`, `gpt`, `bdpt`, `gbdpt`, `vcm`, `gpm`, `gvcm`, `pr`, `gpr` (every layer, the Poisson reconstructions included), and equals the
+# `path`, `volpath`, `vpm`, `bre`, `beam`, `gvpm`, `gbre`, `gpt`, `bdpt`, `gbdpt`, `vcm`, `gpm`, `gvcm`, `pr`, `gpr` (every layer, the Poisson reconstructions included), and equals the
 # merge of the 3 `--partial` files of the same shares; counters are summed over the ranks;
 # `mlt` (both state spaces), `memlt` and `gdmlt` (both) run chain shares: N ranks = the
 # merge of N files bit for bit, = the single render up to double rounding;
@@ -29,7 +29,7 @@ same_exr() {
 }
 common=(--spp 8 --seed 3 --max-depth 5 --quiet)
 
-for integrator in path volpath vpm bre gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
+for integrator in path volpath vpm bre beam gvpm gbre gpt bdpt gbdpt gpm gvcm vcm pr gpr; do
   d="$tmp/$integrator"
   mkdir -p "$d"
   r=(render "$tmp/scene.yaml" --integrator "$integrator" "${common[@]}")
