@@ -42,16 +42,6 @@ using integrators::MediumBeam;
 
 namespace {
 
-integrators::RenderOptions beam_options(int iterations, uint64_t seed, int max_depth) {
-  integrators::RenderOptions opt;
-  opt.spp = iterations;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return opt;
-}
-
 struct BeamConfig {
   BeamKernel kernel = BeamKernel::k3d;
   BeamFault fault = BeamFault::none;
@@ -69,13 +59,7 @@ integrators::RenderResult render_beam(const scene::Scene& s, const BeamConfig& c
   b.radius_alpha = c.alpha;
   b.kernel = c.kernel;
   b.fault = c.fault;
-  return integrators::BeamIntegrator(b).render(s, beam_options(iterations, seed, max_depth));
-}
-
-double beam_channel_mean(const core::Image& img, int c) {
-  double s = 0;
-  for (const auto& p : img.pixels()) s += double(p[c]);
-  return s / double(img.size());
+  return integrators::BeamIntegrator(b).render(s, test::media_options(iterations, seed, max_depth));
 }
 
 double beam_image_mean(const core::Image& img) {
@@ -359,7 +343,7 @@ TEST_CASE("beam: the volumetric furnace renders the environment within the kerne
       CHECK(r.stats.get("beam.nan_dropped") == 0);
       CHECK(r.stats.get("beam.beam_nan_dropped") == 0);
       const core::Image& img = r.layers[0].image;
-      test::add_run(runs, {beam_channel_mean(img, 0), beam_channel_mean(img, 1), beam_channel_mean(img, 2)});
+      test::add_run(runs, {test::channel_mean(img, 0), test::channel_mean(img, 1), test::channel_mean(img, 2)});
     }
     for (int ch = 0; ch < 3; ++ch) {
       const test::Moments m = test::moments(runs[size_t(ch)]);
@@ -407,7 +391,7 @@ const test::Runs& beam_volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBeamBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    test::add_run(ref, {beam_image_mean(in->render(s, beam_options(32, 500 + uint64_t(k), kBeamBoxDepth)).layers[0].image)});
+    test::add_run(ref, {beam_image_mean(in->render(s, test::media_options(32, 500 + uint64_t(k), kBeamBoxDepth)).layers[0].image)});
   }
   return ref;
 }
@@ -481,7 +465,7 @@ TEST_CASE("beam: with media the image depends on the seed only, and parts add up
     b.photons = 5000;  // two light-path chunks
     b.radius_scale = 0.02;
     integrators::BeamIntegrator in(b);
-    auto opt = beam_options(3, 21, kBeamBoxDepth);
+    auto opt = test::media_options(3, 21, kBeamBoxDepth);
     opt.threads = 1;
     const auto one = in.render(*s, opt);
     opt.threads = 2;
@@ -496,7 +480,7 @@ TEST_CASE("beam: with media the image depends on the seed only, and parts add up
     }
     CHECK(same);
     CHECK(differs);
-    auto popt = beam_options(4, 21, kBeamBoxDepth);
+    auto popt = test::media_options(4, 21, kBeamBoxDepth);
     popt.raw = true;
     const auto whole = in.render(*s, popt);
     core::RawImage sum;

@@ -48,16 +48,6 @@ using integrators::GvpmFault;
 
 namespace {
 
-integrators::RenderOptions options(int iterations, uint64_t seed, int max_depth) {
-  integrators::RenderOptions opt;
-  opt.spp = iterations;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return opt;
-}
-
 struct Config {
   GvpmFault fault = GvpmFault::none;
   gradients::ReconnectFault reconnect_fault = gradients::ReconnectFault::none;
@@ -77,7 +67,7 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
   g.fault = c.fault;
   g.reconnect_fault = c.reconnect_fault;
   g.gather = c.gather;
-  return integrators::GvpmIntegrator(g).render(s, options(iterations, seed, max_depth));
+  return integrators::GvpmIntegrator(g).render(s, test::media_options(iterations, seed, max_depth));
 }
 
 const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {
@@ -85,12 +75,6 @@ const core::Image& layer(const integrators::RenderResult& r, const std::string& 
     if (l.name == name) return l.image;
   FAIL("no layer " << name);
   return r.layers[0].image;
-}
-
-double channel_mean(const core::Image& img, int c) {
-  double s = 0;
-  for (const auto& p : img.pixels()) s += double(p[c]);
-  return s / double(img.size());
 }
 
 using test::add_run;
@@ -122,10 +106,10 @@ void furnace_test(integrators::GvpmGather gather) {
       v.radius_alpha = b.radius_alpha = Config{}.radius_alpha;
       v.distance_samples = Config{}.distance_samples;
       b.kernel_dim = 3;
-      const auto opt = options(kIter, 300 + uint64_t(k), kDepth);
+      const auto opt = test::media_options(kIter, 300 + uint64_t(k), kDepth);
       const auto r = beam ? integrators::BreIntegrator(b).render(*s, opt) : integrators::VpmIntegrator(v).render(*s, opt);
-      add_run(runs, {channel_mean(r.layers[0].image, 0), channel_mean(r.layers[0].image, 1),
-                     channel_mean(r.layers[0].image, 2)});
+      add_run(runs, {test::channel_mean(r.layers[0].image, 0), test::channel_mean(r.layers[0].image, 1),
+                     test::channel_mean(r.layers[0].image, 2)});
     }
     return runs;
   };
@@ -145,10 +129,10 @@ void furnace_test(integrators::GvpmGather gather) {
       reflected += r.stats.get(p + ".shift.reflected");
       std::vector<double> v;
       for (const char* name : {"recon_l2", "dx", "dy"})
-        for (int ch = 0; ch < 3; ++ch) v.push_back(channel_mean(layer(r, name), ch));
+        for (int ch = 0; ch < 3; ++ch) v.push_back(test::channel_mean(layer(r, name), ch));
       add_run(runs, v);
       const core::Image& pr = layer(r, "primal");
-      add_run(primal, {channel_mean(pr, 0), channel_mean(pr, 1), channel_mean(pr, 2)});
+      add_run(primal, {test::channel_mean(pr, 0), test::channel_mean(pr, 1), test::channel_mean(pr, 2)});
     }
     double worst = 0;  // in units of the critical value
     for (size_t i = 0; i < runs.size(); ++i) {
@@ -240,7 +224,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    const auto r = in->render(s, options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
+    const auto r = in->render(s, test::media_options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
     add_run(ref, gradient_blocks(r.layers[0].image, nullptr, nullptr));
   }
   return ref;
@@ -358,7 +342,7 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
   g.radius_scale = c.radius_scale;
   g.distance_samples = 4;
   integrators::GvpmIntegrator in(g);
-  auto opt = options(3, 21, kBoxDepth);
+  auto opt = test::media_options(3, 21, kBoxDepth);
   opt.threads = 1;
   const auto one = in.render(*s, opt);
   opt.threads = 2;
@@ -377,7 +361,7 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
   }
   CHECK(same);
   CHECK(differs);
-  auto popt = options(4, 21, kBoxDepth);
+  auto popt = test::media_options(4, 21, kBoxDepth);
   popt.raw = true;
   const auto whole = in.render(*s, popt);
   core::RawImage sum;
@@ -406,13 +390,13 @@ TEST_CASE("gbre: from the registry; without media no photon; with media seed-onl
   CHECK(in->name() == "gbre");
   {
     const auto s = test::lit_box(nullptr, nullptr, 16);
-    const auto r = in->render(*s, options(2, 4, kBoxDepth));
+    const auto r = in->render(*s, test::media_options(2, 4, kBoxDepth));
     CHECK(r.stats.get("gbre.photon_passes_skipped") == 2);
     CHECK(r.stats.get("gbre.photon_paths") == 0);
     CHECK(r.stats.get("gbre.primary_segments") + r.stats.get("gbre.shift.attempted") == 0);
   }
   const auto s = test::media_box(true, 16);
-  auto opt = options(2, 21, kBoxDepth);
+  auto opt = test::media_options(2, 21, kBoxDepth);
   opt.threads = 1;
   auto one = in->render(*s, opt);
   opt.threads = 2;

@@ -35,16 +35,6 @@ using namespace dp;
 
 namespace {
 
-integrators::RenderOptions options(int iterations, uint64_t seed, int max_depth) {
-  integrators::RenderOptions opt;
-  opt.spp = iterations;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return opt;
-}
-
 // One estimator's configuration: "vpm" or "bre", a fault, the shared settings.
 struct Config {
   std::string name;
@@ -76,19 +66,13 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
     common(v);
     v.distance_samples = c.distance_samples;
     v.fault = c.vpm_fault;
-    return integrators::VpmIntegrator(v).render(s, options(iterations, seed, max_depth));
+    return integrators::VpmIntegrator(v).render(s, test::media_options(iterations, seed, max_depth));
   }
   integrators::BreSettings b;
   common(b);
   b.fault = c.bre_fault;
   b.kernel_dim = c.kernel_dim;
-  return integrators::BreIntegrator(b).render(s, options(iterations, seed, max_depth));
-}
-
-double channel_mean(const core::Image& img, int c) {
-  double s = 0;
-  for (const auto& p : img.pixels()) s += double(p[c]);
-  return s / double(img.size());
+  return integrators::BreIntegrator(b).render(s, test::media_options(iterations, seed, max_depth));
 }
 
 // Block means (kBlock x kBlock, summed channels) and the image mean (last entry).
@@ -133,7 +117,7 @@ TEST_CASE("vpm, bre: the volumetric furnace renders the environment within the k
       queries += r.stats.get(c.name + ".queries");
       CHECK(r.stats.get(c.name + ".nan_dropped") == 0);
       const core::Image& img = r.layers[0].image;
-      add_run(runs, {channel_mean(img, 0), channel_mean(img, 1), channel_mean(img, 2)});
+      add_run(runs, {test::channel_mean(img, 0), test::channel_mean(img, 1), test::channel_mean(img, 2)});
     }
     for (int ch = 0; ch < 3; ++ch) {
       const test::Moments m = test::moments(runs[size_t(ch)]);
@@ -180,7 +164,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    add_run(ref, block_means(in->render(s, options(32, 500 + uint64_t(k), kBoxDepth)).layers[0].image, kBoxBlock));
+    add_run(ref, block_means(in->render(s, test::media_options(32, 500 + uint64_t(k), kBoxDepth)).layers[0].image, kBoxBlock));
   }
   return ref;
 }
@@ -277,7 +261,7 @@ TEST_CASE("vpm, bre: with media the image depends on the seed only, and parts ad
     Config c;
     c.name = name;
     for (int photons : {3000, 9000}) {  // one and three photon chunks
-      auto opt = options(3, 21, kBoxDepth);
+      auto opt = test::media_options(3, 21, kBoxDepth);
       integrators::VpmSettings v;
       integrators::BreSettings b;
       v.photons = b.photons = photons;
@@ -301,7 +285,7 @@ TEST_CASE("vpm, bre: with media the image depends on the seed only, and parts ad
       CHECK(same);
       CHECK(differs);
       // Parts: iterations 0, 3 / 1 / 2 of a 4-iteration render.
-      auto popt = options(4, 21, kBoxDepth);
+      auto popt = test::media_options(4, 21, kBoxDepth);
       popt.raw = true;
       const auto whole = in->render(*s, popt);
       core::RawImage sum;
