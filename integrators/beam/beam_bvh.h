@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "integrators/media_photons/photon_bvh.h"  // grown_box_slab_hit
 #include "integrators/media_photons/photon_tracer.h"
 
 namespace dp::integrators {
@@ -86,19 +87,8 @@ class BeamBvh {
     uint32_t first_or_right = 0;  // leaf: pieces [first, first + count); inner: the right child
     uint32_t count = 0;           // 0: inner node, the left child is the next node
   };
-  // The ray's parameter range inside the box [lo - r, hi + r] overlaps [0, t_max].
   static bool slab_hit(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inv, float t_max, float r) {
-    float t0 = 0.0f, t1 = t_max;
-    for (int a = 0; a < 3; ++a) {
-      float ta = (lo[a] - r - o[a]) * inv[a], tb = (hi[a] + r - o[a]) * inv[a];
-      if (ta > tb) std::swap(ta, tb);
-      if (!(ta == ta)) ta = -kInfinity;  // 0 * inf: the ray lies in the slab's plane
-      if (!(tb == tb)) tb = kInfinity;
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-      if (t0 > t1) return false;
-    }
-    return true;
+    return grown_box_slab_hit(lo, hi, o, inv, t_max, r);
   }
   Vec3 piece_point(const Piece& p, float v) const { return m_beams[p.beam].a + v * m_beams[p.beam].w; }
   uint32_t build_node(uint32_t first, uint32_t count, int depth);

@@ -17,6 +17,22 @@
 
 namespace dp::integrators {
 
+// The ray o + t d (inv = 1 / d per axis) has parameters in [0, t_max] inside the box
+// [lo - r, hi + r] (the photon and beam BVHs' traversal test).
+inline bool grown_box_slab_hit(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inv, float t_max, float r) {
+  float t0 = 0.0f, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    float ta = (lo[a] - r - o[a]) * inv[a], tb = (hi[a] + r - o[a]) * inv[a];
+    if (ta > tb) std::swap(ta, tb);
+    if (!(ta == ta)) ta = -kInfinity;  // 0 * inf: the ray lies in the slab's plane
+    if (!(tb == tb)) tb = kInfinity;
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
 class PhotonBvh {
  public:
   static constexpr uint32_t kLeafSize = 8;
@@ -85,19 +101,8 @@ class PhotonBvh {
     uint32_t first = 0, count = 0;  // leaf: photons [first, first + count)
     uint32_t right = 0;             // inner (count 0): the left child is the next node
   };
-  // The ray's parameter range inside the node's box grown by r overlaps [0, t_max].
   static bool slab_hit(const Node& n, const Vec3& o, const Vec3& inv, float t_max, float r) {
-    float t0 = 0.0f, t1 = t_max;
-    for (int a = 0; a < 3; ++a) {
-      float ta = (n.lo[a] - r - o[a]) * inv[a], tb = (n.hi[a] + r - o[a]) * inv[a];
-      if (ta > tb) std::swap(ta, tb);
-      if (!(ta == ta)) ta = -kInfinity;  // 0 * inf: the ray lies in the slab's plane
-      if (!(tb == tb)) tb = kInfinity;
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-      if (t0 > t1) return false;
-    }
-    return true;
+    return grown_box_slab_hit(n.lo, n.hi, o, inv, t_max, r);
   }
   uint32_t build_node(uint32_t first, uint32_t count, int depth);
 
