@@ -1,5 +1,5 @@
 // Shared by the density-estimation tests in media (test_vpm_bre, test_gvpm, test_beam):
-// their render options and channel means, the
+// their channel means (render options: tests/support/quiet_options.h), the
 // volumetric furnace's medium and environment, per-run statistics, and the camera rays'
 // mean length in the furnace ball's outer shell (the extent of the kernels' boundary bias).
 #pragma once
@@ -11,20 +11,10 @@
 #include "core/image.h"
 #include "core/rng.h"
 #include "integrators/integrator.h"
+#include "tests/support/quiet_options.h"  // quiet_options: the render options of these tests
 #include "scene/scene.h"
 
 namespace dp::test {
-
-// `iterations` iterations on 2 threads, quiet.
-inline integrators::RenderOptions media_options(int iterations, uint64_t seed, int max_depth) {
-  integrators::RenderOptions opt;
-  opt.spp = iterations;
-  opt.seed = seed;
-  opt.threads = 2;
-  opt.max_depth = max_depth;
-  opt.quiet = true;
-  return opt;
-}
 
 inline double channel_mean(const core::Image& img, int c) {
   double s = 0;

@@ -59,7 +59,7 @@ integrators::RenderResult render_beam(const scene::Scene& s, const BeamConfig& c
   b.radius_alpha = c.alpha;
   b.kernel = c.kernel;
   b.fault = c.fault;
-  return integrators::BeamIntegrator(b).render(s, test::media_options(iterations, seed, max_depth));
+  return integrators::BeamIntegrator(b).render(s, test::quiet_options(iterations, seed, max_depth));
 }
 
 double beam_image_mean(const core::Image& img) {
@@ -391,7 +391,7 @@ const test::Runs& beam_volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBeamBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    test::add_run(ref, {beam_image_mean(in->render(s, test::media_options(32, 500 + uint64_t(k), kBeamBoxDepth)).layers[0].image)});
+    test::add_run(ref, {beam_image_mean(in->render(s, test::quiet_options(32, 500 + uint64_t(k), kBeamBoxDepth)).layers[0].image)});
   }
   return ref;
 }
@@ -465,7 +465,7 @@ TEST_CASE("beam: with media the image depends on the seed only, and parts add up
     b.photons = 5000;  // two light-path chunks
     b.radius_scale = 0.02;
     integrators::BeamIntegrator in(b);
-    auto opt = test::media_options(3, 21, kBeamBoxDepth);
+    auto opt = test::quiet_options(3, 21, kBeamBoxDepth);
     opt.threads = 1;
     const auto one = in.render(*s, opt);
     opt.threads = 2;
@@ -480,7 +480,7 @@ TEST_CASE("beam: with media the image depends on the seed only, and parts add up
     }
     CHECK(same);
     CHECK(differs);
-    auto popt = test::media_options(4, 21, kBeamBoxDepth);
+    auto popt = test::quiet_options(4, 21, kBeamBoxDepth);
     popt.raw = true;
     const auto whole = in.render(*s, popt);
     core::RawImage sum;

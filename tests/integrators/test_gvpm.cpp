@@ -67,7 +67,7 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
   g.fault = c.fault;
   g.reconnect_fault = c.reconnect_fault;
   g.gather = c.gather;
-  return integrators::GvpmIntegrator(g).render(s, test::media_options(iterations, seed, max_depth));
+  return integrators::GvpmIntegrator(g).render(s, test::quiet_options(iterations, seed, max_depth));
 }
 
 const core::Image& layer(const integrators::RenderResult& r, const std::string& name) {
@@ -106,7 +106,7 @@ void furnace_test(integrators::GvpmGather gather) {
       v.radius_alpha = b.radius_alpha = Config{}.radius_alpha;
       v.distance_samples = Config{}.distance_samples;
       b.kernel_dim = 3;
-      const auto opt = test::media_options(kIter, 300 + uint64_t(k), kDepth);
+      const auto opt = test::quiet_options(kIter, 300 + uint64_t(k), kDepth);
       const auto r = beam ? integrators::BreIntegrator(b).render(*s, opt) : integrators::VpmIntegrator(v).render(*s, opt);
       add_run(runs, {test::channel_mean(r.layers[0].image, 0), test::channel_mean(r.layers[0].image, 1),
                      test::channel_mean(r.layers[0].image, 2)});
@@ -224,7 +224,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    const auto r = in->render(s, test::media_options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
+    const auto r = in->render(s, test::quiet_options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
     add_run(ref, gradient_blocks(r.layers[0].image, nullptr, nullptr));
   }
   return ref;
@@ -342,7 +342,7 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
   g.radius_scale = c.radius_scale;
   g.distance_samples = 4;
   integrators::GvpmIntegrator in(g);
-  auto opt = test::media_options(3, 21, kBoxDepth);
+  auto opt = test::quiet_options(3, 21, kBoxDepth);
   opt.threads = 1;
   const auto one = in.render(*s, opt);
   opt.threads = 2;
@@ -361,7 +361,7 @@ TEST_CASE("gvpm: without media no photon is traced; with media seed-only determi
   }
   CHECK(same);
   CHECK(differs);
-  auto popt = test::media_options(4, 21, kBoxDepth);
+  auto popt = test::quiet_options(4, 21, kBoxDepth);
   popt.raw = true;
   const auto whole = in.render(*s, popt);
   core::RawImage sum;
@@ -390,13 +390,13 @@ TEST_CASE("gbre: from the registry; without media no photon; with media seed-onl
   CHECK(in->name() == "gbre");
   {
     const auto s = test::lit_box(nullptr, nullptr, 16);
-    const auto r = in->render(*s, test::media_options(2, 4, kBoxDepth));
+    const auto r = in->render(*s, test::quiet_options(2, 4, kBoxDepth));
     CHECK(r.stats.get("gbre.photon_passes_skipped") == 2);
     CHECK(r.stats.get("gbre.photon_paths") == 0);
     CHECK(r.stats.get("gbre.primary_segments") + r.stats.get("gbre.shift.attempted") == 0);
   }
   const auto s = test::media_box(true, 16);
-  auto opt = test::media_options(2, 21, kBoxDepth);
+  auto opt = test::quiet_options(2, 21, kBoxDepth);
   opt.threads = 1;
   auto one = in->render(*s, opt);
   opt.threads = 2;

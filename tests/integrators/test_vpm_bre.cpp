@@ -66,13 +66,13 @@ integrators::RenderResult render(const scene::Scene& s, const Config& c, int ite
     common(v);
     v.distance_samples = c.distance_samples;
     v.fault = c.vpm_fault;
-    return integrators::VpmIntegrator(v).render(s, test::media_options(iterations, seed, max_depth));
+    return integrators::VpmIntegrator(v).render(s, test::quiet_options(iterations, seed, max_depth));
   }
   integrators::BreSettings b;
   common(b);
   b.fault = c.bre_fault;
   b.kernel_dim = c.kernel_dim;
-  return integrators::BreIntegrator(b).render(s, test::media_options(iterations, seed, max_depth));
+  return integrators::BreIntegrator(b).render(s, test::quiet_options(iterations, seed, max_depth));
 }
 
 // Block means (kBlock x kBlock, summed channels) and the image mean (last entry).
@@ -164,7 +164,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
   for (int k = 0; k < kBoxRuns; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    add_run(ref, block_means(in->render(s, test::media_options(32, 500 + uint64_t(k), kBoxDepth)).layers[0].image, kBoxBlock));
+    add_run(ref, block_means(in->render(s, test::quiet_options(32, 500 + uint64_t(k), kBoxDepth)).layers[0].image, kBoxBlock));
   }
   return ref;
 }
@@ -261,7 +261,7 @@ TEST_CASE("vpm, bre: with media the image depends on the seed only, and parts ad
     Config c;
     c.name = name;
     for (int photons : {3000, 9000}) {  // one and three photon chunks
-      auto opt = test::media_options(3, 21, kBoxDepth);
+      auto opt = test::quiet_options(3, 21, kBoxDepth);
       integrators::VpmSettings v;
       integrators::BreSettings b;
       v.photons = b.photons = photons;
@@ -285,7 +285,7 @@ TEST_CASE("vpm, bre: with media the image depends on the seed only, and parts ad
       CHECK(same);
       CHECK(differs);
       // Parts: iterations 0, 3 / 1 / 2 of a 4-iteration render.
-      auto popt = test::media_options(4, 21, kBoxDepth);
+      auto popt = test::quiet_options(4, 21, kBoxDepth);
       popt.raw = true;
       const auto whole = in->render(*s, popt);
       core::RawImage sum;
