@@ -13,6 +13,7 @@ const char* kind_name(pathspace::BidirKind k) {
     case pathspace::BidirKind::camera: return "camera";
     case pathspace::BidirKind::light: return "light";
     case pathspace::BidirKind::surface: return "surface";
+    case pathspace::BidirKind::medium: return "medium";
   }
   return "?";
 }

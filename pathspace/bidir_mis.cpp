@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "pathspace/bidir_light.h"
+#include "pathspace/bidir_media.h"
 
 namespace dp::pathspace {
 
@@ -14,38 +15,59 @@ double remap(float pdf) { return pdf != 0.0f ? double(pdf) : 1.0; }
 }  // namespace
 
 ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
-                                    const BidirVertex* camera, int t, bool cos) {
+                                    const BidirVertex* camera, int t, bool cos, const EdgeMedia* edge,
+                                    bool free_flight) {
   ReversePdfs r;
   const BidirVertex& z = camera[t - 1];
+  // Free-flight factors of the edges z_{t-1} z_{t-2} and y_{s-1} y_{s-2} toward the
+  // predecessors (1 without media).
+  const float z_back = free_flight ? z.ff_rev : 1.0f;
   if (s == 0) {
     // z_{t-1} acts as the light vertex: its density is light selection x area sampling,
     // z_{t-2}'s is the emission direction density.
     r.z[0] = light_pdf_pos(scene, z);
-    if (t >= 2) r.z[1] = light_pdf_next(scene, z, camera[t - 2]);
+    if (t >= 2) r.z[1] = light_pdf_next(scene, z, camera[t - 2]) * z_back;
     return r;
   }
   const BidirVertex& y = light[s - 1];
+  const float y_back = free_flight ? y.ff_rev : 1.0f;
+  // The connection's factors: ending at z (light walk) and at y (camera walk).
+  EdgeMedia traced;
+  if (!edge && scene.caps().has_media) {
+    traced = trace_edge(scene, z, y);
+    edge = &traced;
+  }
+  const float to_z = edge && free_flight ? edge->to_a : 1.0f, to_y = edge && free_flight ? edge->to_b : 1.0f;
   const Vec3 yz = y.infinite() ? Vec3(-y.sp.ng) : Vec3((z.sp.p - y.sp.p).normalized());
   // z_{t-1} generated from y_{s-1} (light walk direction).
-  r.z[0] = s == 1 ? light_pdf_next(scene, y, z)
-                  : solid_angle_to_area(bsdf_pdf(y, y.wi, yz, scene::TransportMode::importance), y, z, cos);
+  r.z[0] = to_z * (s == 1 ? light_pdf_next(scene, y, z)
+                          : solid_angle_to_area(scatter_pdf(scene, y, y.wi, yz, scene::TransportMode::importance), y,
+                                                z, cos));
   // z_{t-2} generated from z_{t-1}, arriving from y_{s-1}.
   if (t >= 2)
-    r.z[1] = solid_angle_to_area(bsdf_pdf(z, -yz, z.wi, scene::TransportMode::importance), z, camera[t - 2], cos);
+    r.z[1] = z_back * solid_angle_to_area(scatter_pdf(scene, z, -yz, z.wi, scene::TransportMode::importance), z,
+                                          camera[t - 2], cos);
   // y_{s-1} generated from z_{t-1} (camera walk direction).
-  const float pdf_zy =
-      t == 1 ? scene.camera().pdf_direction(-yz) : bsdf_pdf(z, z.wi, -yz, scene::TransportMode::radiance);
-  r.y[0] = solid_angle_to_area(pdf_zy, z, y, cos);
+  const float pdf_zy = t == 1 ? scene.camera().pdf_direction(-yz)
+                              : scatter_pdf(scene, z, z.wi, -yz, scene::TransportMode::radiance);
+  r.y[0] = to_y * solid_angle_to_area(pdf_zy, z, y, cos);
   // y_{s-2} generated from y_{s-1}, arriving from z_{t-1}.
-  if (s >= 2) r.y[1] = solid_angle_to_area(bsdf_pdf(y, yz, y.wi, scene::TransportMode::radiance), y, light[s - 2], cos);
+  if (s >= 2)
+    r.y[1] = y_back * solid_angle_to_area(scatter_pdf(scene, y, yz, y.wi, scene::TransportMode::radiance), y,
+                                          light[s - 2], cos);
   return r;
+}
+
+ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
+                                    const BidirVertex* camera, int t, const MisConfig& config,
+                                    const EdgeMedia* edge) {
+  return connection_reverse_pdfs(scene, light, s, camera, t, config.fault != BidirFault::reverse_pdf_without_cosine,
+                                 edge, config.fault != BidirFault::reverse_pdf_without_free_flight);
 }
 
 float mis_weight(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
                  const MisConfig& config) {
-  return mis_weight(light, s, camera, t, config,
-                    connection_reverse_pdfs(scene, light, s, camera, t,
-                                            config.fault != BidirFault::reverse_pdf_without_cosine));
+  return mis_weight(light, s, camera, t, config, connection_reverse_pdfs(scene, light, s, camera, t, config));
 }
 
 float mis_weight(const BidirVertex* light, int s, const BidirVertex* camera, int t, const MisConfig& config,

@@ -28,6 +28,8 @@ enum class BidirFault : uint8_t {
   connection_without_cosine,   // a connection's scattering factors miss |cos| (bidir_connect.cpp)
   splat_pixel_rounded,         // light-tracing splats go to the nearest pixel corner's pixel (bdpt_tracer.cpp)
   light_tracing_at_infinity,   // an environment seen directly counts the impossible (1, 1) strategy
+  reverse_pdf_without_free_flight,  // the recomputed reverse densities miss the free-flight factors (media)
+  connection_without_transmittance,  // a connection's value misses the transmittance of its media (bidir_connect.cpp)
 };
 
 struct MisConfig {
@@ -42,11 +44,19 @@ struct MisConfig {
 // side; y_rev[0], y_rev[1] likewise for light[s-1], light[s-2]. For s = 0, camera[t-1] acts
 // as the light endpoint (light selection x position; emission toward camera[t-2]).
 // Unused entries stay 0. `cosine` = false is BidirFault::reverse_pdf_without_cosine.
+// With media each density gets the free-flight factor of its edge (bidir_media.h): the
+// connection's from `edge` (traced here if null), the predecessors' from ff_rev.
 struct ReversePdfs {
   float z[2] = {0, 0}, y[2] = {0, 0};
 };
+struct EdgeMedia;
 ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
-                                    const BidirVertex* camera, int t, bool cosine = true);
+                                    const BidirVertex* camera, int t, bool cosine = true,
+                                    const EdgeMedia* edge = nullptr, bool free_flight = true);
+// The same with the config's faults applied.
+ReversePdfs connection_reverse_pdfs(const scene::Scene& scene, const BidirVertex* light, int s,
+                                    const BidirVertex* camera, int t, const MisConfig& config,
+                                    const EdgeMedia* edge = nullptr);
 
 // Weight of strategy (s, t) (s + t >= 2, t >= 1) for the path y_0..y_{s-1} z_{t-1}..z_0.
 // For s = 0, camera[t-1] must lie on an area emitter.

@@ -4,7 +4,11 @@
 
 #include "core/warp.h"
 #include "pathspace/bidir_light.h"
+#include "pathspace/bidir_media.h"
 #include "pathspace/scatter.h"
+#include "scene/media/free_flight.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
 #include "scene/shapes/shape.h"
 
 namespace dp::pathspace {
@@ -20,7 +24,8 @@ scene::TransportMode other(scene::TransportMode m) {
 float leave_pdf(const scene::Scene& scene, const BidirVertex& from, const BidirVertex& to, scene::TransportMode mode) {
   if (from.kind == BidirKind::light) return light_pdf_next(scene, from, to);
   const Vec3 w = -to.wi;
-  const float pdf = from.kind == BidirKind::camera ? scene.camera().pdf_direction(w) : bsdf_pdf(from, from.wi, w, mode);
+  const float pdf =
+      from.kind == BidirKind::camera ? scene.camera().pdf_direction(w) : scatter_pdf(scene, from, from.wi, w, mode);
   return solid_angle_to_area(pdf, from, to);
 }
 
@@ -31,15 +36,21 @@ void set_densities(const scene::Scene& scene, BidirVertex* path, size_t n, Bidir
                    scene::TransportMode mode) {
   const BidirVertex& prev = path[n - 1];
   if (prev.delta) return;
-  v.pdf_fwd = leave_pdf(scene, prev, v, mode);
-  if (n >= 2 && prev.kind == BidirKind::surface)
-    path[n - 2].pdf_rev = solid_angle_to_area(bsdf_pdf(prev, -v.wi, prev.wi, other(mode)), prev, path[n - 2]);
+  // The free-flight factors of the edges (1 without media; bidir_media.h).
+  v.pdf_fwd = leave_pdf(scene, prev, v, mode) * v.ff_fwd;
+  if (n >= 2 && (prev.kind == BidirKind::surface || prev.kind == BidirKind::medium))
+    path[n - 2].pdf_rev =
+        solid_angle_to_area(scatter_pdf(scene, prev, -v.wi, prev.wi, other(mode)), prev, path[n - 2]) * prev.ff_rev;
 }
 
 // The camera walk escaped along `d`: the environment as a light vertex at infinity.
-void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb& beta, std::vector<BidirVertex>& path) {
+// ff: the free-flight factors of the escaping edge (bidir_media.h).
+void add_environment_vertex(const scene::Scene& scene, const Vec3& d, const Rgb& beta, std::vector<BidirVertex>& path,
+                            const FlightChain& ff) {
   BidirVertex v;
   v.kind = BidirKind::light;
+  v.ff_fwd = ff.to_b;
+  v.ff_rev = ff.to_a;
   v.emitter = scene.environment();
   v.sp.ng = d;
   v.sp.p = path.back().sp.p + d * (4.0f * infinite_disk_radius(scene));
@@ -68,19 +79,99 @@ namespace {
 // Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
 // carried by the ray. Densities from vertex positions (bidir_vertex.h).
 // `from`: the surface vertex the ray leaves (anchored at it), or null for a ray from an
-// endpoint.
+// endpoint. In scenes with media each segment in a medium samples a free flight
+// (scene/media/free_flight.h) exactly as volpath: a scatter makes a medium vertex (its
+// direction from the phase function, weight 1), a pass multiplies beta by Tr / P(pass);
+// index-matched boundaries switch the medium and are not vertices (bidir_media.h).
 void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportMode mode,
                  const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path,
                  const scene::SurfaceHit* from = nullptr) {
+  constexpr int kUnknown = -2;
+  const bool media = scene.caps().has_media;
+  const int cam_medium = scene.camera_medium();
   scene::SurfaceHit hit;
   bool from_surface = from != nullptr;  // the ray leaves the surface vertex `hit` (anchored at it)
   if (from) hit = *from;
+  // The medium of the ray; a light's is that of the near side of the first surface the
+  // emitted ray meets if it is a boundary, else the camera's (as the photon tracers).
+  int medium = !media ? -1 : path.back().kind == BidirKind::light ? kUnknown : medium_toward(scene, path.back(), ray.d);
+  FlightChain chain;
+  int crossings = 0;
   while (int(path.size()) < params.max_vertices) {
-    if (!(from_surface ? next_hit(scene, hit, ray.d, hit) : scene.intersect(ray, hit))) {
-      if (mode == scene::TransportMode::radiance && scene.environment()) add_environment_vertex(scene, ray.d, beta, path);
-      break;
+    const bool found = from_surface ? next_hit(scene, hit, ray.d, hit) : scene.intersect(ray, hit);
+    if (medium == kUnknown) {
+      medium = found ? scene::medium_toward(hit, -ray.d, cam_medium, cam_medium) : cam_medium;
+      path.back().medium = int16_t(medium);
+      if (medium >= 0 && path.back().infinite()) break;  // Tr(inf) = 0 (bidir_media.h)
     }
     const BidirVertex& prev = path.back();
+    const bool prev_medium = prev.kind == BidirKind::medium;
+    if (medium >= 0) {
+      const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
+      const float u_channel = rng.uniform(), u_distance = rng.uniform();
+      const scene::FreeFlightSample ff =
+          scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      beta *= ff.weight;
+      if (is_black(beta)) break;
+      if (ff.scattered) {
+        BidirVertex v;
+        v.kind = BidirKind::medium;
+        v.sp.p = ray.at(ff.t);
+        v.sp.ng = Vec3::Zero();
+        v.medium = int16_t(medium);
+        if (prev.infinite()) {
+          v.wi = prev.sp.ng;
+        } else {
+          const Vec3 d = prev.sp.p - v.sp.p;
+          const float len = d.norm();
+          if (!(len > 0.0f)) break;
+          v.wi = d / len;
+        }
+        chain.finish(scene, medium, ff.t, prev_medium, true);
+        v.ff_fwd = chain.to_b;
+        v.ff_rev = chain.to_a;
+        chain = FlightChain{};
+        v.beta = beta;
+        set_densities(scene, path.data(), path.size(), v, mode);
+        path.push_back(v);
+        if (int(path.size()) >= params.max_vertices) break;
+        BidirVertex& cur = path.back();
+        // Phase sampling is exact (weight 1); sigma_s is in the free flight's weight.
+        const scene::HenyeyGreenstein phase(med.phase);
+        const Vec3 wo = phase.sample(-cur.wi, rng.uniform2());
+        cur.pdf_out = phase.pdf(-cur.wi, wo);
+        if (params.stop_after_smooth) break;
+        float q = 1.0f;
+        if (int(path.size()) - 1 >= params.rr_depth) {
+          q = std::min(0.95f, max_component(beta));
+          if (!(rng.uniform() < q)) break;
+          beta /= q;
+        }
+        cur.rr_out = q;
+        cur.weight_out = Rgb::Constant(1.0f / q);
+        ray.o = cur.sp.p;
+        ray.d = wo;
+        ray.tmin = 0.0f;
+        ray.tmax = kInfinity;
+        from_surface = false;
+        continue;
+      }
+    }
+    if (!found) {
+      if (mode == scene::TransportMode::radiance && scene.environment()) {
+        chain.finish(scene, medium, kInfinity, prev_medium, false);
+        add_environment_vertex(scene, ray.d, beta, path, chain);
+      }
+      break;
+    }
+    if (media && scene::is_index_matched(hit)) {  // not a vertex: switch media, keep the direction
+      if (++crossings > kMaxEdgeCrossings) break;
+      chain.pass(scene, medium, hit.t);
+      medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
+      ray = scene.continue_ray(hit, ray.d);
+      from_surface = true;
+      continue;
+    }
     BidirVertex v = surface_vertex_at(hit);
     if (prev.infinite()) {
       v.wi = prev.sp.ng;  // exactly toward the light at infinity
@@ -89,6 +180,13 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
       const float len = d.norm();
       if (!(len > 0.0f)) break;
       v.wi = d / len;
+    }
+    if (media) {
+      v.medium = int16_t(medium);
+      chain.finish(scene, medium, hit.t, prev_medium, false);
+      v.ff_fwd = chain.to_b;
+      v.ff_rev = chain.to_a;
+      chain = FlightChain{};
     }
     v.beta = beta;
     set_densities(scene, path.data(), path.size(), v, mode);
@@ -118,7 +216,8 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     }
     cur.rr_out = q;
     cur.weight_out = bs->weight / q;
-    ray.d = wo;
+    if (media) medium = scene::medium_toward(hit, wo, medium, cam_medium);
+    ray = scene.continue_ray(hit, wo);  // ray.o: the origin of a medium vertex's distance
     from_surface = true;
   }
 }
@@ -134,6 +233,13 @@ void derive(const scene::Scene& scene, std::vector<BidirVertex>& path, size_t n,
   else if (v.infinite()) v.wi = -v.sp.ng;
   else v.wi = (prev.sp.p - v.sp.p).normalized();
   v.pdf_fwd = v.pdf_rev = 0.0f;
+  if (scene.caps().has_media) {  // the edge's free-flight factors, re-traced (bidir_media.h)
+    const bool reversed = prev.infinite();
+    const EdgeMedia e = reversed ? trace_edge(scene, v, prev) : trace_edge(scene, prev, v);
+    v.ff_fwd = reversed ? e.to_a : e.to_b;
+    v.ff_rev = reversed ? e.to_b : e.to_a;
+    if (v.kind != BidirKind::medium && !reversed) v.medium = int16_t(e.b_medium);
+  }
   set_densities(scene, path.data(), n, v, mode);
 }
 }  // namespace

@@ -30,6 +30,14 @@
 //  * Camera pdfs use the whole-image direction density (PerspectiveCamera::
 //    pdf_direction); one light path is traced per camera sample, so the sample counts
 //    of camera and light strategies are equal and cancel in the MIS weights.
+//  * Participating media (homogeneous; pathspace/bidir_media.h): a walk that scatters in
+//    a medium makes a vertex of kind `medium` (sp.p only, no normal). Densities there are
+//    volume densities: solid_angle_to_area drops the cosine at a medium target (Veach
+//    1997, Eq. 8.10 with |cos| = 1; Pauly et al. 2000). Each edge's free-flight factors
+//    multiply the densities of both walks along it: ff_fwd (this vertex's pdf_fwd) and
+//    ff_rev (the predecessor's pdf_rev) -- p(t) of the scatter at a medium end,
+//    P(pass) at a surface end, P(pass) of every sub-segment before it when the edge
+//    crosses index-matched boundaries (which are not vertices in scenes with media).
 #pragma once
 
 #include <cstdint>
@@ -38,7 +46,7 @@
 
 namespace dp::pathspace {
 
-enum class BidirKind : uint8_t { camera, light, surface };
+enum class BidirKind : uint8_t { camera, light, surface, medium };
 
 struct BidirVertex {
   scene::SurfacePoint sp;                  // p always; ng/shading/uv for surface and area-light vertices
@@ -59,6 +67,12 @@ struct BidirVertex {
   float u_lobe = 0, pdf_out = 0, rr_out = 1;
   int32_t shape = -1, prim = -1;  // surface vertices: the hit shape and primitive (manifold walks)
   Rgb weight_out = Rgb::Zero();
+  // Media (bidir_media.h; all -1 / 1 in scenes without media): the medium this vertex
+  // lies in (a medium vertex) or its walk arrived through (surface; camera: the camera's
+  // medium; light: the medium it emits into), the surface's boundary media, and the
+  // free-flight factors of the edge from its predecessor (header comment).
+  int16_t medium = -1, interior = -1, exterior = -1;
+  float ff_fwd = 1, ff_rev = 1;
 
   bool on_surface() const {
     return kind == BidirKind::surface || (kind == BidirKind::light && emitter->kind() == scene::EmitterKind::area);
@@ -87,6 +101,8 @@ inline BidirVertex surface_vertex_at(const scene::SurfaceHit& hit) {
   v.bsdf = hit.bsdf;
   v.emitter = hit.emitter;
   v.kind = BidirKind::surface;
+  v.interior = int16_t(hit.interior_medium);
+  v.exterior = int16_t(hit.exterior_medium);
   return v;
 }
 
@@ -98,6 +114,8 @@ inline scene::SurfaceHit surface_hit(const BidirVertex& v) {
   h.prim = v.prim;
   h.bsdf = v.bsdf;
   h.emitter = v.emitter;
+  h.interior_medium = v.interior;
+  h.exterior_medium = v.exterior;
   return h;
 }
 

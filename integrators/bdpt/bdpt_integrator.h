@@ -3,6 +3,8 @@
 // Image = camera-side estimate per pixel (divided by its sample count) + light-tracing
 // splats (scaled by pixel count / light paths traced), merged deterministically
 // (splat_merger.h). Every light kind: area, point, spot, directional, environment.
+// Homogeneous participating media: medium vertices, free flights and transmittances in
+// the walks and connections (pathspace/bidir_media.h); grid media are refused.
 #pragma once
 
 #include "integrators/bdpt/bdpt_settings.h"
@@ -19,6 +21,7 @@ class BdptIntegrator final : public Integrator {
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   // --partial / --mpi: the raw sums "camera" and "light" (splats) and the count "spp".
   bool supports_raw() const override { return true; }
+  bool renders_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

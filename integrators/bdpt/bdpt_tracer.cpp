@@ -12,6 +12,12 @@ bool BdptTracer::sample(const Vec2& raster, core::Rng& rng, BdptScratch& sc, Rgb
   pathspace::light_subpath(m_scene, light_params, rng, sc.light);
   counters.camera_vertices += int64_t(sc.camera.size());
   counters.light_vertices += int64_t(sc.light.size());
+  if (m_scene.caps().has_media) {
+    for (const auto* path : {&sc.camera, &sc.light})
+      for (const auto& v : *path) counters.medium_vertices += v.kind == pathspace::BidirKind::medium;
+  } else {
+    ++counters.media_skipped;
+  }
   const int nc = int(sc.camera.size()), nl = int(sc.light.size());
   const int width = m_scene.camera().width();
   Rgb sum = Rgb::Zero();

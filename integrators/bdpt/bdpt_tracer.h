@@ -19,7 +19,11 @@ namespace dp::integrators {
 // Hot-loop counters, flushed into core::Stats once per tile.
 struct BdptCounters {
   int64_t camera_vertices = 0, light_vertices = 0, connections = 0, occluded = 0, splats = 0;
+  int64_t medium_vertices = 0;  // camera and light vertices in media
+  int64_t media_skipped = 0;    // samples traced without medium code (scene without media)
   void flush(core::Stats& stats) const {
+    stats.add("bdpt.medium_vertices", medium_vertices);
+    stats.add("bdpt.media_skipped", media_skipped);
     stats.add("bdpt.camera_vertices", camera_vertices);
     stats.add("bdpt.light_vertices", light_vertices);
     stats.add("bdpt.connections", connections);

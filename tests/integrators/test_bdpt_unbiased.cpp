@@ -7,7 +7,10 @@
 // light (light subpaths from a disk at infinity): there the MIS that counts light tracing
 // from the environment to the pinhole (a strategy no sample takes) must be rejected. Thresholds come from the run-to-run spread. The same test must reject BDPT with a real defect (BidirFault): the
 // light-tracing strategy left out of the MIS sums, and reverse densities missing their
-// cosine.
+// cosine. In participating media (test::media_box: a fog filling the box, an
+// index-matched smoke ball, a glass ball holding a tinted medium) against volpath (`path`
+// delegates to it), rejecting connections without their transmittance and reverse
+// densities without their free-flight factors.
 #include <catch2/catch.hpp>
 #include <cstdio>
 
@@ -93,4 +96,19 @@ TEST_CASE("bdpt: image mean agrees with PT under an environment and a directiona
   settings.mis.fault = pathspace::BidirFault::light_tracing_at_infinity;
   CHECK(verdict("environment + sun, balance, fault: light tracing at infinity", bdpt_stats(*s, 16, settings),
                 path_stats(*s, 64)) > 1.0);
+}
+
+TEST_CASE("bdpt: image mean agrees with volpath in participating media", "[stat]") {
+  for (const bool fog : {true, false}) {
+    const auto s = media_box(fog, kRes);
+    const char* name = fog ? "media box with fog" : "media box";
+    const Stats p = path_stats(*s, 64);
+    integrators::BdptSettings settings;
+    CHECK(verdict(name, bdpt_stats(*s, 16, settings), p) < 1.0);
+    if (!fog) continue;
+    settings.mis.fault = pathspace::BidirFault::connection_without_transmittance;
+    CHECK(verdict("media box with fog, fault: connection without transmittance", bdpt_stats(*s, 16, settings), p) > 1.0);
+    settings.mis.fault = pathspace::BidirFault::reverse_pdf_without_free_flight;
+    CHECK(verdict("media box with fog, fault: reverse pdf without free flight", bdpt_stats(*s, 16, settings), p) > 1.0);
+  }
 }

@@ -153,7 +153,7 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
   return finish(std::move(s), Vec3(0.0f, 0.0f, 2.5f), Vec3(0, 0, 0), 55.0f, resolution);
 }
 
-std::unique_ptr<scene::Scene> media_box(bool fog, int resolution) {
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_ball) {
   auto s = std::make_unique<scene::Scene>();
   const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
   const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
@@ -165,8 +165,12 @@ std::unique_ptr<scene::Scene> media_box(bool fog, int resolution) {
   smoke->interior_medium = s->add_medium(make_medium(Rgb::Constant(0.2f), Rgb(1.5f, 2.5f, 3.5f), 0.5f));
   s->add_shape(std::move(smoke));
   auto glass = std::make_unique<scene::Sphere>(Vec3(0.45f, -0.6f, 0.2f), 0.4f);
-  glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
-  glass->interior_medium = s->add_medium(make_medium(Rgb(0.2f, 0.8f, 1.6f), Rgb::Constant(0.3f), 0.0f));
+  if (glass_ball) {
+    glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
+    glass->interior_medium = s->add_medium(make_medium(Rgb(0.2f, 0.8f, 1.6f), Rgb::Constant(0.3f), 0.0f));
+  } else {
+    glass->material = white;
+  }
   s->add_shape(std::move(glass));
   if (fog) s->set_camera_medium(s->add_medium(make_medium(Rgb::Constant(0.05f), Rgb::Constant(0.15f), -0.3f)));
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);

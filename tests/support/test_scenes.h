@@ -49,7 +49,8 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
 // (sigma_s (1.5, 2.5, 3.5), sigma_a 0.2, HG g = 0.5), sphere b a glass ball (eta 1.5)
 // filled with an absorbing, weakly scattering tinted medium (isotropic). `fog`: the
 // camera's medium is a thin fog (sigma_s 0.15, sigma_a 0.05, g = -0.3) filling the
-// closed box, around and between the balls.
-std::unique_ptr<scene::Scene> media_box(bool fog, int resolution);
+// closed box, around and between the balls. `glass` false: sphere b is diffuse and
+// holds no medium (no caustics; the smoke ball is the only medium besides the fog).
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass = true);
 
 }  // namespace dp::test
