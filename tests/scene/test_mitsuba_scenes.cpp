@@ -107,14 +107,15 @@ void check_agreement(const BlockStats& s) {
 }
 
 // K renders at (w, h); reference box-downsampled by `factor`; blocks of b x b pixels.
-BlockStats compare(const Scene& scene, const core::Image& ref, int factor, int b, int spp, int k, int max_depth) {
+BlockStats compare(const Scene& scene, const core::Image& ref, int factor, int b, int spp, int k, int max_depth,
+                   const char* integrator = "path") {
   const int w = scene.camera().width(), h = scene.camera().height();
   REQUIRE(ref.width() == w * factor);
   REQUIRE(ref.height() == h * factor);
   std::vector<core::Image> renders;
   for (int i = 0; i < k; ++i) {
     integrators::Settings settings;
-    auto integ = integrators::make_integrator("path", settings);
+    auto integ = integrators::make_integrator(integrator, settings);
     integrators::RenderOptions opt;
     opt.spp = spp;
     opt.seed = uint64_t(1000 + i);
@@ -197,6 +198,23 @@ BlockStats compare_veach_scene(const std::string& name) {
   return s;
 }
 
+// The volumetric-caustic scene as its tests render it: v0.6 at 128^2 with an isotropic
+// phase (why: the comment of the volpath test below).
+std::unique_ptr<Scene> volumetric_caustic_128() {
+  const fs::path p = shared_scenes() / "volumetric-caustic" / "scene_v0.6.xml";
+  std::string xml = read_text(p);
+  xml = std::regex_replace(xml, std::regex("value=\"1024\""), "value=\"128\"");
+  xml = std::regex_replace(xml, std::regex("<phase type=\"hg\" >[^<]*<float name=\"g\" value=\"0.5\" />[^<]*</phase>"),
+                           "<phase type=\"isotropic\"/>");
+  auto scene = load_scene_mitsuba_string(xml, p.string());
+  REQUIRE(scene->caps().has_media);
+  REQUIRE(scene->media().size() == 1);
+  REQUIRE(scene->media()[0].sigma_s[0] == 1.0f);
+  REQUIRE(scene->media()[0].phase.type == PhaseFunctionDesc::Type::isotropic);
+  REQUIRE(scene->integrator_defaults().type == "volpath");
+  return scene;
+}
+
 }  // namespace
 
 TEST_CASE("mitsuba: every shared scene loads", "[unit]") {
@@ -273,20 +291,27 @@ TEST_CASE("mitsuba: veach-mis agrees with the Tungsten reference", "[slow]") {
 // candidates). Kept as [!mayfail] to document it.
 TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (volpath)", "[slow][!mayfail]") {
   require_shared_or_skip();
-  const fs::path p = shared_scenes() / "volumetric-caustic" / "scene_v0.6.xml";
-  std::string xml = read_text(p);
-  xml = std::regex_replace(xml, std::regex("value=\"1024\""), "value=\"128\"");
-  xml = std::regex_replace(xml, std::regex("<phase type=\"hg\" >[^<]*<float name=\"g\" value=\"0.5\" />[^<]*</phase>"),
-                           "<phase type=\"isotropic\"/>");
-  const auto scene = load_scene_mitsuba_string(xml, p.string());
-  REQUIRE(scene->caps().has_media);
-  REQUIRE(scene->media().size() == 1);
-  REQUIRE(scene->media()[0].sigma_s[0] == 1.0f);
-  REQUIRE(scene->media()[0].phase.type == PhaseFunctionDesc::Type::isotropic);
-  REQUIRE(scene->integrator_defaults().type == "volpath");
+  const auto scene = volumetric_caustic_128();
   const core::Image ref = core::read_exr((shared_scenes() / "volumetric-caustic" / "TungstenRender.exr").string());
   const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, scene->integrator_defaults().max_depth - 1);
   report("volumetric-caustic", s);
+  for (int c = 0; c < 3; ++c) CHECK(std::abs(s.mean[c] / s.ref_mean[c] - 1.0) < 0.01);
+  check_agreement(s);
+}
+
+// The same with bdpt, which reaches the caustic by light tracing through the glass
+// (light -> glass -> medium vertex -> camera) instead of by chance. Measured (16 x 16 spp,
+// session 16): image mean 1.33 x the reference, as volpath's 1.33 -- the two agree, so
+// the gap is the scene's translation, not the integrators; the smooth blocks 1.04-1.50 x.
+// Rendered at depth 4 instead of 6 the mean is 0.98-1.01 x but 255 of 256 blocks are off
+// (a different spatial distribution), at depth 5 it is 1.18 x: no depth rule matches
+// Tungsten's file. Kept as [!mayfail], with the volpath case, to document it.
+TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (bdpt)", "[slow][!mayfail]") {
+  require_shared_or_skip();
+  const auto scene = volumetric_caustic_128();
+  const core::Image ref = core::read_exr((shared_scenes() / "volumetric-caustic" / "TungstenRender.exr").string());
+  const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, scene->integrator_defaults().max_depth - 1, "bdpt");
+  report("volumetric-caustic (bdpt)", s);
   for (int c = 0; c < 3; ++c) CHECK(std::abs(s.mean[c] / s.ref_mean[c] - 1.0) < 0.01);
   check_agreement(s);
 }
