@@ -43,6 +43,7 @@ const std::vector<Entry>& registry() {
       {"beam", make<BeamIntegrator>, "progressive photon beams: light paths' medium segments as short beams in a BVH, camera segments in media gather them with the Beam-Beam 3D estimate (kernel: 1d for Beam x Beam 1D) (Jarosz et al. 2011; Gruson et al. 2018, Sec. 5.2, 6.1)"},
       {"gvpm", make<GvpmIntegrator>, "gradient-domain volumetric photon mapping: vpm's primary-ray gathers shifted (distance copy, mixed photon shift, reconnection to the photon's parent, Eq. 19 MIS), L1/L2 reconstruction (Gruson et al. 2018, Sec. 4)"},
       {"gbre", GvpmIntegrator::make_gbre, "gradient-domain beam radiance estimate: each primary-ray segment in a medium a Point-Beam 3D query (a gather point per photon, uniform on its chord), shifted as gvpm's, L1/L2 reconstruction (Gruson et al. 2018, Sec. 5.1)"},
+      {"gbeam", GvpmIntegrator::make_gbeam, "gradient-domain photon beams: each primary-ray segment in a medium gathers the light paths' short beams with Beam-Beam 3D (a photon uniform on each beam's chord, a gather point uniform on the camera chord around it), shifted as gbre's with the photon reconnected to its beam's start, L1/L2 reconstruction (Gruson et al. 2018, Sec. 5.2)"},
       {"bdpt", make<BdptIntegrator>, "bidirectional path tracing, all s/t strategies, power/balance MIS (Veach 1997)"},
       {"vcm", make<VcmIntegrator>, "vertex connection and merging (Georgiev et al. 2012); modes vcm, bpt, vm, ppm, lt"},
       {"gpt", make<GptIntegrator>, "gradient-domain path tracing (Kettunen et al. 2015), L1/L2 reconstruction"},

@@ -56,6 +56,8 @@
 // 1D: the piece holding the closest point).
 #pragma once
 
+#include <vector>
+
 #include "integrators/beam/beam_bvh.h"
 #include "integrators/beam/beam_settings.h"
 #include "integrators/media_photons/media_camera.h"
@@ -69,6 +71,18 @@ namespace dp::integrators {
 // on the piece. Zero when the piece does not reach within r; in 1D, unless the closest
 // point lies in the piece ([v0, v1), the last piece also at v1 = length). Counts
 // parallel pairs (1D) in `counters`.
+// The BVH's piece length for these beams at radius r (beam_bvh.h; measured choice in the
+// .cpp).
+float beam_piece_length(const scene::Scene& scene, const std::vector<MediumBeam>& beams, float r);
+// Tr_b(v) / P(v) of a short beam at v ((1) above); Tr_b(v) alone with the planted
+// BeamFault::no_pass_probability.
+Rgb beam_point_weight(const scene::HomogeneousMedium& med, float v, BeamFault fault = BeamFault::none);
+// The part [lo, hi] of the beam line a + v w, v in [v0, v1], within r of the camera line
+// c + t w_c whose projection onto it lies in [-r, s + r] (an interval: a cylinder and a
+// slab; every point within r of the segment is in it); false if empty. Beam-Beam 3D
+// draws its beam point uniformly on it.
+bool beam_tube_interval(const Vec3& a, const Vec3& w, double v0, double v1, const Vec3& c, const Vec3& w_c, double s,
+                        double r, double& lo, double& hi);
 Rgb beam_beam_3d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,
                  const Vec3& w_c, float s, float r, float u, BeamFault fault = BeamFault::none);
 Rgb beam_beam_1d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,

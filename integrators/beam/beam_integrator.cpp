@@ -25,16 +25,8 @@ RenderResult BeamIntegrator::render(const scene::Scene& scene, const RenderOptio
     stats.add("beam.beams_stored", bc.stored);
     stats.add("beam.beams_clipped", bc.clipped);
     stats.add("beam.beam_nan_dropped", bc.dropped);
-    // Pieces of at most max(16 r, diag / 128) (beam_bvh.h), longer if that would make more
-    // than 8M pieces (memory: ~15 bytes a piece with the nodes). On cornell_smoke (128^2,
-    // 1 spp, 1 thread) 16 r with 16 pieces a leaf took 0.85x the time and 1/3 of the
-    // memory of 8 r with 4 a leaf; 4 r, 32 r and 64 r were slower (the query's cost is
-    // the nodes and pieces near the camera ray, ~1000 node visits for ~65 candidates).
-    double total = 0.0;
-    for (const MediumBeam& b : beams) total += double(b.length);
-    const double diag = double(scene.bounds().diagonal());
-    const double piece = std::max({16.0 * double(r), (std::isfinite(diag) ? diag : 0.0) / 128.0, total / 8e6});
-    bvh.build(std::move(beams), float(piece));
+    const float piece = beam_piece_length(scene, beams, r);
+    bvh.build(std::move(beams), piece);
     stats.add("beam.beam_pieces", int64_t(bvh.pieces()));
     gather = std::make_unique<BeamGather>(scene, m_settings, bvh, r, tp.paths);
     return true;

@@ -12,6 +12,7 @@
 #include "integrators/media_photons/media_photon_render.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/tile_scheduler.h"
+#include "integrators/beam/beam_gather.h"
 #include "integrators/bre/bre_gather.h"
 #include "integrators/vpm/vpm_gather.h"
 
@@ -31,6 +32,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const double r1 = initial_media_radius(scene, m_settings);
   const std::string prefix = m_settings.name();  // gvpm | gbre
   const bool beam = m_settings.gather == GvpmGather::beam;
+  const bool beams = m_settings.gather == GvpmGather::beams;
   // The gathers of the unshifted camera segments (after the first surface): vpm's, or for
   // gbre bre's Point-Beam 3D (the same estimator as its shifted gathers, integrated).
   VpmSettings vpm;
@@ -39,6 +41,12 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   BreSettings bre;
   static_cast<MediaPhotonSettings&>(bre) = m_settings;
   bre.kernel_dim = 3;
+  BeamSettings beam_settings;  // gbeam's later segments: beam's Beam-Beam 3D
+  static_cast<MediaPhotonSettings&>(beam_settings) = m_settings;
+  beam_settings.kernel = BeamKernel::k3d;
+  std::vector<gradients::PhotonParent> beam_parents;
+  BeamBvh beam_bvh;
+  BeamTraceCounters beam_counters;
 
   GradientPasses passes;
   passes.total = gradients::GradientBuffers(w, h);
@@ -64,16 +72,32 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
     if (media) {  // no photon is traced for a scene without media
       const PhotonTraceParams tp = photon_pass_params(m_settings, options, global, threads);
       std::vector<MediumPhoton> photons;
-      if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents)) {
-        passes.partial = true;
-        break;
+      if (beams) {  // only the light paths' beams are kept, with their parents (photon_tracer.h)
+        PhotonTraceParams tb = tp;
+        tb.store_photons = false;
+        std::vector<MediumBeam> traced;
+        BeamTraceCounters bc;
+        if (!trace_medium_photons(scene, tb, options.stop, photons, pc, &parents, &traced, &bc, &beam_parents)) {
+          passes.partial = true;
+          break;
+        }
+        beam_counters += bc;
+        const float piece = beam_piece_length(scene, traced, r);
+        beam_bvh.build(std::move(traced), piece);
+        later = std::make_unique<BeamGather>(scene, beam_settings, beam_bvh, r, tp.paths);
+      } else {
+        if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents)) {
+          passes.partial = true;
+          break;
+        }
+        bvh.build(std::move(photons));
+        if (beam) later = std::make_unique<BreGather>(scene, bre, bvh, r, tp.paths);
+        else later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
       }
-      bvh.build(std::move(photons));
-      if (beam) later = std::make_unique<BreGather>(scene, bre, bvh, r, tp.paths);
-      else later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
     }
-    const GvpmTracer tracer(scene, m_settings, options.max_depth, media ? &bvh : nullptr, media ? &parents : nullptr, r,
-                            media ? int64_t(m_settings.photons) : 0, later.get());
+    const GvpmTracer tracer(scene, m_settings, options.max_depth, media ? &bvh : nullptr,
+                            media ? (beams ? &beam_parents : &parents) : nullptr, r,
+                            media ? int64_t(m_settings.photons) : 0, later.get(), media ? &beam_bvh : nullptr);
     for (auto& s : iter_stats) s = core::Stats{};
     std::vector<char> tile_done(static_cast<size_t>(tiles), 0);
     core::parallel_for(
@@ -90,6 +114,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
         },
         options.stop);
     bvh.release();
+    beam_bvh.release();
     const bool complete = std::find(tile_done.begin(), tile_done.end(), 0) == tile_done.end();
     for (size_t t = 0; t < buffers.size(); ++t) {
       if (complete) {
@@ -120,13 +145,18 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   photon_counters.flush(result.stats, prefix);
   result.stats.add(prefix + ".iterations", done);
   if (!media) result.stats.add(prefix + ".photon_passes_skipped", done);
+  if (beams) {
+    result.stats.add(prefix + ".beams_stored", beam_counters.stored);
+    result.stats.add(prefix + ".beams_clipped", beam_counters.clipped);
+    result.stats.add(prefix + ".beam_nan_dropped", beam_counters.dropped);
+  }
   result.info["media"] = media;
   result.info["kernel_dimension"] = 3;
   result.info["radius_initial"] = r1;
   result.info["radius_final"] = radius;
   result.info["photons_per_iteration"] = m_settings.photons;
-  result.info["gather"] = beam ? "beam (Point-Beam 3D)" : "points";
-  if (!beam) result.info["distance_samples"] = m_settings.distance_samples;
+  result.info["gather"] = beams ? "beams (Beam-Beam 3D)" : beam ? "beam (Point-Beam 3D)" : "points";
+  if (!beam && !beams) result.info["distance_samples"] = m_settings.distance_samples;
   result.info["mixed_shift"] = m_settings.mixed;
   result.wall_seconds = timer.seconds();
   return result;

@@ -16,6 +16,12 @@
 // beam: the primary ray's segments are Point-Beam 3D queries (every photon within r of the
 // segment, its gather point uniform on its chord) shifted as above with R's camera factor
 // |chord| / |chord'|; the later segments use `bre`'s kernel=3d gather; counters `gbre.*`.
+// `--integrator gbeam` (G-Beam, Sec. 5.2) is it with GvpmSettings::gather = beams: the
+// light paths' medium segments are short photon beams (as `beam`, with parent records,
+// in a BeamBvh); a primary-ray segment draws one photon per beam piece within r
+// (uniform on the piece's chord, Beam-Beam 3D) and a gather point uniform on its camera
+// chord, shifted as gbre's (the photon reconnected to its beam's start vertex); the later
+// segments use `beam`'s Beam-Beam 3D gather; counters `gbeam.*`.
 #pragma once
 
 #include <memory>
@@ -32,6 +38,11 @@ class GvpmIntegrator final : public Integrator {
   // `gbre`: the settings read by GvpmSettings::read_gbre.
   static std::unique_ptr<Integrator> make_gbre(Settings& settings) {
     GvpmSettings g = GvpmSettings::read_gbre(settings);
+    return std::make_unique<GvpmIntegrator>(g, settings.to_json());
+  }
+  // `gbeam`: the settings read by GvpmSettings::read_gbeam.
+  static std::unique_ptr<Integrator> make_gbeam(Settings& settings) {
+    GvpmSettings g = GvpmSettings::read_gbeam(settings);
     return std::make_unique<GvpmIntegrator>(g, settings.to_json());
   }
   explicit GvpmIntegrator(const GvpmSettings& settings, core::Json json = {}) : m_settings(settings), m_json(std::move(json)) {}

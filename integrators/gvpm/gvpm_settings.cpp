@@ -24,6 +24,16 @@ GvpmSettings GvpmSettings::read_gbre(Settings& s) {
   return g;
 }
 
+GvpmSettings GvpmSettings::read_gbeam(Settings& s) {
+  GvpmSettings g;
+  g.gather = GvpmGather::beams;
+  g.distance_samples = 1;
+  g.photons = 20000;  // light paths, as `beam` (beam_settings.h)
+  g.read_common(s, 0.001);
+  g.read_gradient_keys(s);
+  return g;
+}
+
 void GvpmSettings::read_gradient_keys(Settings& s) {
   GvpmSettings& g = *this;
   g.alpha = float(s.get_double("alpha", double(g.alpha),

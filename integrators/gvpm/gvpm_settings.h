@@ -6,6 +6,8 @@
 // the simple shift). Written to the sidecar.
 // `gbre` (G-BRE, Sec. 5.1) is the same integrator with beam gathers (GvpmGather::beam):
 // `bre`'s keys (radius_scale 0.10%, no distance_samples) and the same gradient keys.
+// `gbeam` (G-Beam, Sec. 5.2; GvpmGather::beams): `beam`'s keys (photons 20000 light
+// paths, radius_scale 0.10%) and the same gradient keys.
 #pragma once
 
 #include <string>
@@ -23,12 +25,16 @@ enum class GvpmFault : uint8_t {
   mis_weight_one,          // the pair's MIS weight 1 on both sides (Eq. 19 left out)
   chord_as_diameter,       // gbre: the gather density 1 / (2r) instead of 1 / |chord| (the chord's clipping and
                            // its photon's distance from the ray ignored)
+  beam_chord_ignored,      // gbeam: the beam photon not divided by its density 1 / |beam chord|
 };
 
 // How the primary ray's segments are gathered: `gvpm`'s gather points (distance samples,
 // 3D point queries) or `gbre`'s Point-Beam 3D (every photon within r of the segment, its
 // gather point drawn uniformly on its chord).
-enum class GvpmGather : uint8_t { points, beam };
+// `gbeam` (G-Beam, Sec. 5.2): the primary ray's segments against photon beams, Beam-Beam
+// 3D (a photon drawn uniformly on each beam's chord near the segment, then a gather point
+// uniformly on the camera chord around it), shifted as gbre's.
+enum class GvpmGather : uint8_t { points, beam, beams };
 
 struct GvpmSettings : MediaPhotonSettings {
   int distance_samples = 40;          // gather points per camera segment in a medium (as vpm)
@@ -41,7 +47,10 @@ struct GvpmSettings : MediaPhotonSettings {
 
   static GvpmSettings read(Settings& s);       // gvpm
   static GvpmSettings read_gbre(Settings& s);  // gbre
-  const char* name() const { return gather == GvpmGather::beam ? "gbre" : "gvpm"; }
+  static GvpmSettings read_gbeam(Settings& s); // gbeam
+  const char* name() const {
+    return gather == GvpmGather::beam ? "gbre" : gather == GvpmGather::beams ? "gbeam" : "gvpm";
+  }
 
  private:
   void read_gradient_keys(Settings& s);

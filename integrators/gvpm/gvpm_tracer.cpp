@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gradients/volume_photon_shift.h"
+#include "integrators/beam/beam_gather.h"
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/volpath/volpath_tracer.h"  // kMaxNullCrossings
 #include "integrators/vpm/vpm_gather.h"          // sample_truncated_distance, truncated_distance_pdf
@@ -69,14 +70,15 @@ class LaterSegments final : public MediumGather {
 
 GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
                        const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
-                       const MediumGather* later)
+                       const MediumGather* later, const BeamBvh* beams)
     : m_scene(scene),
       m_settings(settings),
       m_max_depth(max_depth),
       m_photons(photons),
       m_parents(parents),
       m_radius(radius),
-      m_beam(settings.gather == GvpmGather::beam),
+      m_beam(settings.gather != GvpmGather::points),
+      m_beams(settings.gather == GvpmGather::beams ? beams : nullptr),
       m_scale(light_paths > 0 ? uniform_kernel(3, double(radius)) /
                                     (double(light_paths) * (m_beam ? 1 : settings.distance_samples))
                               : 0.0),
@@ -123,6 +125,10 @@ float GvpmTracer::distance_pdf(const scene::HomogeneousMedium& m, float len, flo
 
 void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
   const int budget = m_max_depth - 1;
+  if (m_settings.gather == GvpmGather::beams) {
+    if (budget >= 1 && m_beams && !m_beams->empty() && seg.len > 0.0f) gather_beams(seg, k, rng, sc, counters);
+    return;
+  }
   if (budget < 1 || !m_photons || m_photons->empty() || !(seg.len > 0.0f)) return;
   if (m_beam) return gather_beam(seg, k, rng, sc, counters);
   const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
@@ -209,6 +215,67 @@ void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, Gvpm
                         });
 }
 
+void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc,
+                              GvpmCounters& counters) const {
+  // Beam-Beam 3D (Sec. 5.2, Fig. 6c): per beam piece within r of the segment one photon b
+  // uniform on the piece's chord (beam_gather.h), then its gather point uniform on the
+  // camera chord around b (p(t) = 1 / |chord|, as gbre); shifted as gbre's.
+  const int budget = m_max_depth - 1;
+  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
+  if (is_black(med.sigma_s)) {
+    ++counters.empty_segments;
+    return;
+  }
+  const float r = m_radius;
+  const float s = m_beams->clip(seg.ray.o, seg.ray.d, seg.len, r);  // no beam lies beyond
+  if (!(s > 0.0f)) return;
+  const scene::HenyeyGreenstein phase(med.phase);
+  const Vec3 to_camera = -seg.ray.d;
+  const bool chord_pdf = m_settings.fault != GvpmFault::beam_chord_ignored;
+  m_beams->query_segment(seg.ray.o, seg.ray.d, s, r, [&](const MediumBeam& beam, float v0, float v1) {
+    if (beam.medium != seg.medium) return;
+    if (beam.depth > budget) {
+      ++counters.depth_skipped;
+      return;
+    }
+    double blo = 0, bhi = 0;
+    if (!beam_tube_interval(beam.a, beam.w, double(v0), double(v1), seg.ray.o, seg.ray.d, double(s), double(r), blo, bhi))
+      return;
+    const double chord_b = bhi - blo;
+    const float v = float(blo + double(rng.uniform()) * chord_b);
+    const Vec3 b = beam.a + v * beam.w;
+    float lo = 0, hi = 0;
+    if (!point_beam_chord(seg.ray.o, seg.ray.d, seg.len, b, r, lo, hi)) return;  // b(v) farther than r
+    const float t = std::min(lo + rng.uniform() * (hi - lo), std::nextafter(hi, lo));
+    const Rgb weight = beam.beta * beam_point_weight(med, v) * med.sigma_s * float(chord_pdf ? chord_b : 1.0);
+    GvpmGatherPoint gp;
+    gp.segment = k;
+    gp.t = t;
+    gp.pdf = 1.0f / (hi - lo);
+    gp.d = seg.ray.at(t);
+    gp.first = uint32_t(sc.terms.size());
+    gp.count = 1;
+    ++counters.gather_points;
+    const Rgb value = seg.beta * scene::transmittance(med, t) * float(m_scale / double(gp.pdf)) *
+                      phase.eval(beam.w, to_camera) * weight;
+    if (is_black(value) || !(gp.pdf > 0.0f) || !std::isfinite(gp.pdf)) return;
+    ++counters.photons_gathered;
+    sc.beam_photons.push_back(MediumPhoton{b, beam.w, weight, beam.depth, beam.medium, beam.index});
+    sc.terms.push_back({&sc.beam_photons.back(), value});
+    sc.points.push_back(gp);
+  });
+}
+
+namespace {
+// gbeam: the chord of the line through x along w within r of the camera segment
+// (beam_tube_interval over the whole line); 0 if it misses (R's light factor).
+double line_chord(const Vec3& x, const Vec3& w, const GvpmSegment& seg, float r) {
+  double lo = 0, hi = 0;
+  if (!beam_tube_interval(x, w, -1e30, 1e30, seg.ray.o, seg.ray.d, double(seg.len), double(r), lo, hi)) return 0.0;
+  return hi - lo;
+}
+}  // namespace
+
 void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradients::GradientBuffers& buf,
                         GvpmCounters& counters) const {
   ++counters.samples;
@@ -219,6 +286,7 @@ void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradien
   sc.splats.pair_primal = true;
   sc.terms.clear();
   sc.points.clear();
+  sc.beam_photons.clear();
   // The unshifted part: vpm's camera path without the primary ray's gathers.
   const LaterSegments later(m_later, m_max_depth - 1);
   const Rgb direct = m_camera.radiance(primary, m_later ? &later : nullptr, rng, counters.camera);
@@ -297,11 +365,18 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
         const PhotonShiftKind kind = m_settings.mixed
                                          ? gradients::mixed_photon_shift_t(ph.p, gp.d, d_off, m_radius, b_off)
                                          : (b_off = gradients::simple_photon_shift(ph.p, gp.d, d_off), PhotonShiftKind::simple);
+        // gbeam: R's light factor C(b, w_b) / C(b', w_b') (gvpm_tracer.h).
+        const double c_base = m_beams ? line_chord(ph.p, ph.w, base, m_radius) : 1.0;
+        auto light_ratio = [&](const Vec3& x, const Vec3& dir) -> double {
+          if (!m_beams) return 1.0;
+          const double c_off = line_chord(x, dir, *off, m_radius);
+          return c_off > 0.0 ? c_base / c_off : 0.0;
+        };
         if (kind == PhotonShiftKind::null) {  // the same photon in both kernels: no reconnection
           ++counters.shift_null;
           const Rgb v = cam_off * phase.eval(ph.w, -off->ray.d) * ph.beta;
           off_v = v.cast<double>();
-          R = camera_ratio(ph.p);
+          R = camera_ratio(ph.p) * light_ratio(ph.p, ph.w);
           ok = !is_black(v) && R > 0.0;
           if (!(R > 0.0)) ++counters.fail_distance;
           else if (!ok) ++counters.fail_zero;
@@ -319,7 +394,8 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
             } else {
               const Rgb v = cam_off * phase.eval(rec.w, -off->ray.d) * ph.beta * rec.ratio;
               off_v = v.cast<double>();
-              R = camera_ratio(b_off) * rec.pdf_ratio;  // Eq. 19: p(Tz) p(Ty) / (p(z) p(y)), |T'| = 1
+              // Eq. 19: p(Tz) p(Ty) / (p(z) p(y)), |T'| = 1
+              R = camera_ratio(b_off) * rec.pdf_ratio * light_ratio(b_off, rec.w);
               ok = !is_black(v) && R > 0.0;
               if (ok) ++counters.reconnections;
               else ++(R > 0.0 ? counters.fail_zero : counters.fail_distance);

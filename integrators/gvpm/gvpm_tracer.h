@@ -20,6 +20,15 @@
 //    MIS (Eq. 19, balance heuristic) w = 1 / (1 + R), R = p'(t) / p(t) (Eq. 14 on the
 //    offset segment) x p(b' | a) / p(b | a) (1 for a null shift); a failed shift is the
 //    T_0 fallback (the pair's gradient -f(x)/p(x)). Primal as G-PT's pair estimates.
+//  gbre (Sec. 5.1) gathers every photon within r of a segment with a gather point uniform
+//  on its camera chord; gbeam (Sec. 5.2, Beam-Beam 3D) draws a photon b uniformly on
+//  each beam piece's chord near the segment (weight beta Tr(v)/P(v) sigma_s |chord_b|,
+//  beam_gather.h) and then a gather point as gbre; the shift is gbre's, b reconnected to
+//  the beam's parent. R's light factor for gbeam is the point photon's density ratio times
+//  C(b, w_b) / C(b', w_b'), C the chord of the photon's line (through it along its incident
+//  direction) within r of the base / offset camera segment: the beam's sampling density up
+//  to P(v) / p_ff(v), which is constant for grey media (any density evaluated alike on
+//  both sides keeps Eq. 19's weights summing to 1).
 //  * Everything else of the camera path -- emission seen directly, surface NEE and BSDF
 //    sampling, gathers on segments after the first surface -- is `vpm`'s camera path
 //    (media_camera.h) and goes to the `direct` layer unshifted (added to both
@@ -27,6 +36,7 @@
 #pragma once
 
 #include <array>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -34,6 +44,7 @@
 #include "core/stats.h"
 #include "gradients/gradient_buffers.h"
 #include "gradients/volume_photon_reconnect.h"
+#include "integrators/beam/beam_bvh.h"
 #include "integrators/gvpm/gvpm_settings.h"
 #include "integrators/media_photons/media_camera.h"
 #include "integrators/media_photons/photon_bvh.h"
@@ -75,6 +86,7 @@ struct GvpmScratch {
   std::vector<GvpmSegment> base, offset;
   std::vector<GvpmGatherPoint> points;
   std::vector<GvpmTerm> terms;
+  std::deque<MediumPhoton> beam_photons;  // gbeam: the photons drawn on beams (stable addresses)
   PairSplats splats;
 };
 
@@ -82,9 +94,11 @@ class GvpmTracer {
  public:
   // `photons`/`parents` may be empty (no media); `later`: the gather of the segments after
   // the first surface (vpm's), null without media.
+  // gbeam: `beams` holds the photon beams and `parents` their parent records
+  // ((*parents)[beam.index]); `photons` is unused.
   GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
              const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
-             const MediumGather* later);
+             const MediumGather* later, const BeamBvh* beams = nullptr);
   void sample(int px, int py, core::Rng& rng, GvpmScratch& scratch, gradients::GradientBuffers& buf,
               GvpmCounters& counters) const;
 
@@ -94,6 +108,7 @@ class GvpmTracer {
   float distance_pdf(const scene::HomogeneousMedium& m, float len, float t, bool truncated) const;
   void gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
   void gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
+  void gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
   void offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h, GvpmCounters& counters) const;
 
   const scene::Scene& m_scene;
@@ -102,7 +117,8 @@ class GvpmTracer {
   const PhotonBvh* m_photons;
   const std::vector<gradients::PhotonParent>* m_parents;
   float m_radius;
-  bool m_beam;     // gbre's Point-Beam 3D gathers
+  bool m_beam;     // gbre's and gbeam's gather points, uniform on a camera chord
+  const BeamBvh* m_beams;  // gbeam's photon beams (null otherwise)
   double m_scale;  // K3(r) / (N M), M = 1 for gbre
   const MediumGather* m_later;
   MediaCameraTracer m_camera;

@@ -104,7 +104,8 @@ void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMediu
 
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
                std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
-               std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc) {
+               std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc,
+               std::vector<PhotonParent>* beam_parents) {
   ++c.paths;
   Ray ray;
   Rgb beta;
@@ -136,7 +137,11 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
       const float u_channel = rng.uniform(), u_distance = rng.uniform();
       const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
-      if (beams) tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, *beams, bc);
+      if (beams) {
+        const size_t before = beams->size();
+        tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, *beams, bc);
+        if (beam_parents && beams->size() > before) beam_parents->push_back(parent);
+      }
       beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
       if (is_black(beta)) return;
       if (ff.scattered) {
@@ -214,11 +219,13 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<PhotonParent>* parents, std::vector<MediumBeam>* beams,
-                          BeamTraceCounters* beam_counters) {
+                          BeamTraceCounters* beam_counters, std::vector<PhotonParent>* beam_parents) {
+  if (!parents || !beams) beam_parents = nullptr;
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
   std::vector<std::vector<PhotonParent>> parent_parts(parents ? static_cast<size_t>(chunks) : 0);
   std::vector<std::vector<MediumBeam>> beam_parts(beams ? static_cast<size_t>(chunks) : 0);
+  std::vector<std::vector<PhotonParent>> beam_parent_parts(beam_parents ? static_cast<size_t>(chunks) : 0);
   std::vector<BeamTraceCounters> beam_chunk_counters(static_cast<size_t>(chunks));
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
@@ -230,9 +237,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
         std::vector<pathspace::BidirVertex> scratch;
         std::vector<PhotonParent>* pp = parents ? &parent_parts[size_t(k)] : nullptr;
         std::vector<MediumBeam>* bp = beams ? &beam_parts[size_t(k)] : nullptr;
+        std::vector<PhotonParent>* bpp = beam_parents ? &beam_parent_parts[size_t(k)] : nullptr;
         for (int64_t i = 0; i < n; ++i)
           trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch, bp,
-                    beam_chunk_counters[size_t(k)]);
+                    beam_chunk_counters[size_t(k)], bpp);
         done[size_t(k)] = 1;
       },
       stop);
@@ -250,6 +258,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
     for (const auto& p : beam_parts) beam_total += p.size();
     beams->clear();
     beams->reserve(beam_total);
+    if (beam_parents) {
+      beam_parents->clear();
+      beam_parents->reserve(beam_total);
+    }
   }
   for (size_t k = 0; k < parts.size(); ++k) {
     const uint32_t offset = uint32_t(out.size());
@@ -260,6 +272,7 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
       const uint32_t beam_offset = uint32_t(beams->size());
       for (MediumBeam& b : beam_parts[k]) b.index += beam_offset;
       beams->insert(beams->end(), beam_parts[k].begin(), beam_parts[k].end());
+      if (beam_parents) beam_parents->insert(beam_parents->end(), beam_parent_parts[k].begin(), beam_parent_parts[k].end());
       if (beam_counters) *beam_counters += beam_chunk_counters[k];
     }
     counters += chunk_counters[k];

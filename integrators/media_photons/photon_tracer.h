@@ -113,10 +113,13 @@ struct PhotonTraceParams {
 // Traces params.paths light paths into `out` (cleared); false if `stop` interrupted it.
 // With `parents`, (*parents)[photon.index] is each photon's parent record. With `beams`,
 // every medium segment's short beam (in chunk order, beam.index its position), counted in
-// *beam_counters (required with `beams`).
+// *beam_counters (required with `beams`). With `beam_parents` (needs `parents` and
+// `beams`), (*beam_parents)[beam.index] is the vertex each beam's light path left last
+// (the parent of every photon on the beam; G-Beam's reconnection).
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<gradients::PhotonParent>* parents = nullptr,
-                          std::vector<MediumBeam>* beams = nullptr, BeamTraceCounters* beam_counters = nullptr);
+                          std::vector<MediumBeam>* beams = nullptr, BeamTraceCounters* beam_counters = nullptr,
+                          std::vector<gradients::PhotonParent>* beam_parents = nullptr);
 
 }  // namespace dp::integrators
