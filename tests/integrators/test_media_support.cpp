@@ -39,5 +39,5 @@ TEST_CASE("integrators without media support refuse a scene with media", "[unit]
       CHECK(msg.find('\n') == std::string::npos);
     }
   }
-  CHECK(capable == std::set<std::string>{"path", "volpath", "vpm", "bre", "beam", "gvpm", "gbre"});
+  CHECK(capable == std::set<std::string>{"path", "volpath", "vpm", "bre", "beam", "plane", "gvpm", "gbre"});
 }
