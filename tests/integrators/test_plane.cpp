@@ -301,6 +301,67 @@ TEST_CASE("plane: planes carry the light of the beams they replace, shadow "
   }
 }
 
+// The light pass: recording planes changes no photon and no beam (their D has
+// its own stream), and the planes match one to one, in order, the beams that
+// start at a scattering event (the light they replace): the same depth, w1 =
+// the beam's direction, the beam's start on the plane's segment. A plane
+// recorded before the roulette at a1, or for an event whose path ends there,
+// has no such beam.
+TEST_CASE("plane: planes leave the light paths unchanged and replace the beams "
+          "from scattering events",
+          "[unit]") {
+  const auto s = test::media_box(true, 16);
+  integrators::PhotonTraceParams tp;
+  tp.paths = 5000;
+  tp.max_depth = 8;
+  tp.seed = 5;
+  tp.threads = 2;
+  std::vector<integrators::MediumPhoton> p1, p2;
+  std::vector<integrators::MediumBeam> b1, b2;
+  std::vector<MediumPlane> planes;
+  integrators::PhotonTraceCounters c1, c2;
+  integrators::BeamTraceCounters bc1, bc2;
+  integrators::PlaneTraceCounters plc;
+  REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, p1, c1, nullptr,
+                                            &b1, &bc1));
+  REQUIRE(integrators::trace_medium_photons(*s, tp, nullptr, p2, c2, nullptr,
+                                            &b2, &bc2, &planes, &plc));
+  REQUIRE(p1.size() == p2.size());
+  REQUIRE(b1.size() == b2.size());
+  bool same = true;
+  for (size_t i = 0; i < p1.size(); ++i)
+    same = same && p1[i].p == p2[i].p && (p1[i].beta == p2[i].beta).all();
+  for (size_t i = 0; i < b1.size(); ++i)
+    same = same && b1[i].a == b2[i].a && b1[i].length == b2[i].length &&
+           b1[i].after_scatter == b2[i].after_scatter;
+  CHECK(same);
+  CHECK(plc.stored == int64_t(planes.size()));
+  CHECK(plc.dropped == 0);
+  std::vector<integrators::MediumBeam> from_scatter;
+  for (const auto &b : b2)
+    if (b.after_scatter)
+      from_scatter.push_back(b);
+  int64_t matched = 0;
+  for (size_t i = 0; i < std::min(planes.size(), from_scatter.size()); ++i) {
+    const MediumPlane &pl = planes[i];
+    const integrators::MediumBeam &b = from_scatter[i];
+    const float t = (b.a - pl.a0).dot(pl.w0);
+    const bool on_segment =
+        (pl.a0 + t * pl.w0 - b.a).norm() <= 1e-4f * (1.0f + b.a.norm()) &&
+        t >= 0.0f && t <= pl.t0_end * (1.0f + 1e-5f);
+    matched += pl.depth == b.depth && pl.medium == b.medium &&
+                       (pl.w1 - b.w).norm() < 1e-6f && on_segment
+                   ? 1
+                   : 0;
+  }
+  std::printf("[plane light pass] %zu planes, %zu beams from scattering "
+              "events, %lld matched\n",
+              planes.size(), from_scatter.size(), (long long)matched);
+  CHECK(!planes.empty());
+  CHECK(planes.size() == from_scatter.size());
+  CHECK(matched == int64_t(planes.size()));
+}
+
 TEST_CASE("plane: without media no plane is traced and no medium code runs",
           "[unit]") {
   const auto s = test::lit_box(nullptr, nullptr, 16);
