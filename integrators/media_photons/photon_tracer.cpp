@@ -172,7 +172,8 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         if (!survive(++s)) return;
         if (planes) {
           const float u_plane_channel = plane_rng.uniform(), u_plane = plane_rng.uniform();
-          record_plane(scene, med, seg_o, seg_d, seg_end, ray.d, beta_a, q_last, s, medium, u_plane_channel, u_plane, *planes, plc);
+          record_plane(scene, med, seg_o, seg_d, seg_end, ray.d, beta_a, q_last, s, medium, u_plane_channel, u_plane,
+                       *planes, plc);
         }
         after_scatter = true;
         found = scene.intersect(ray, hit);
