@@ -5,6 +5,7 @@
 #include "integrators/integrator.h"
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/beam/beam_integrator.h"
+#include "integrators/plane/plane_integrator.h"
 #include "integrators/bre/bre_integrator.h"
 #include "integrators/gdmlt/gdmlt_integrator.h"
 #include "integrators/gbdpt/gbdpt_integrator.h"
@@ -41,6 +42,7 @@ const std::vector<Entry>& registry() {
       {"vpm", make<VpmIntegrator>, "progressive volumetric photon mapping: photons at medium scattering events, point queries along camera segments in media, 3D kernel (Jensen & Christensen 1998; Gruson et al. 2018, Sec. 4)"},
       {"bre", make<BreIntegrator>, "progressive beam radiance estimate: camera segments in media as beam queries against medium photons, 2D kernel (Jarosz et al. 2008; Gruson et al. 2018, Sec. 5.1)"},
       {"beam", make<BeamIntegrator>, "progressive photon beams: light paths' medium segments as short beams in a BVH, camera segments in media gather them with the Beam-Beam 3D estimate (kernel: 1d for Beam x Beam 1D) (Jarosz et al. 2011; Gruson et al. 2018, Sec. 5.2, 6.1)"},
+      {"plane", make<PlaneIntegrator>, "progressive photon planes: each medium scattering event of a light path keeps its segment x sampled direction as a plane, camera segments in media take the 0D plane estimate (1/|det|, a shadow ray per hit), light from light/surface vertices by Beam-Beam 3D (Bitterli & Jarosz 2017; Gruson et al. 2018, Sec. 5.3)"},
       {"gvpm", make<GvpmIntegrator>, "gradient-domain volumetric photon mapping: vpm's primary-ray gathers shifted (distance copy, mixed photon shift, reconnection to the photon's parent, Eq. 19 MIS), L1/L2 reconstruction (Gruson et al. 2018, Sec. 4)"},
       {"gbre", GvpmIntegrator::make_gbre, "gradient-domain beam radiance estimate: each primary-ray segment in a medium a Point-Beam 3D query (a gather point per photon, uniform on its chord), shifted as gvpm's, L1/L2 reconstruction (Gruson et al. 2018, Sec. 5.1)"},
       {"gbeam", GvpmIntegrator::make_gbeam, "gradient-domain photon beams: each primary-ray segment in a medium gathers the light paths' short beams with Beam-Beam 3D (a photon uniform on each beam's chord, a gather point uniform on the camera chord around it), shifted as gbre's with the photon reconnected to its beam's start, L1/L2 reconstruction (Gruson et al. 2018, Sec. 5.2)"},

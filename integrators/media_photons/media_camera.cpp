@@ -25,6 +25,12 @@ void MediaCameraCounters::flush(core::Stats& stats, const std::string& prefix, c
   stats.add(prefix + ".empty_segments", gather.empty_segments);
   if (names.candidates) stats.add(prefix + "." + names.candidates, gather.candidates);
   if (names.parallel) stats.add(prefix + "." + names.parallel, gather.parallel);
+  if (names.planes) {
+    stats.add(prefix + ".plane_tests", gather.plane_tests);
+    stats.add(prefix + ".intersections", gather.intersections);
+    stats.add(prefix + ".plane_shadow_rays", gather.intersections);
+    stats.add(prefix + ".occluded", gather.occluded);
+  }
 }
 
 MediaCameraTracer::MediaCameraTracer(const scene::Scene& scene, int rr_depth, int max_depth)

@@ -31,6 +31,9 @@ struct GatherCounters {
   int64_t empty_segments = 0;  // segments skipped: nothing scatters along them (sigma_t = 0 or infinite)
   int64_t candidates = 0;      // beam-beam candidates (`beam`: beams within r of the segment, depth allowed)
   int64_t parallel = 0;        // `beam` (1D kernel): candidates parallel to the segment, no closest point
+  int64_t plane_tests = 0;     // `plane`: plane pieces whose box the segment passes (intersection solved)
+  int64_t intersections = 0;   // `plane`: segment-plane intersections inside both (depth, medium allowed)
+  int64_t occluded = 0;        // `plane`: intersections whose shadow ray a1(t0) -> b was blocked
 };
 
 // Sidecar names of the gather counters (<prefix>.<name>): the photon estimators' by
@@ -41,6 +44,7 @@ struct GatherCounterNames {
   const char* depth_skipped = "photons_depth_skipped";
   const char* candidates = nullptr;
   const char* parallel = nullptr;
+  bool planes = false;  // `plane`: also plane_tests, intersections (= shadow rays), occluded
 };
 
 // The in-scattered radiance along one camera segment inside medium `medium`: the ray

@@ -35,6 +35,28 @@ void PhotonTraceCounters::flush(core::Stats& stats, const std::string& prefix) c
   stats.add(prefix + ".photon_nan_dropped", nan_dropped);
 }
 
+void grown_bounds_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1) {
+  const Bounds3& b = scene.bounds();
+  t0 = 0.0f;
+  t1 = kInfinity;
+  if (!b.valid()) {
+    t0 = 1.0f;
+    t1 = 0.0f;
+    return;
+  }
+  const float grow = std::max(b.diagonal(), 1.0f);
+  for (int a = 0; a < 3; ++a) {
+    const float lo = b.lo[a] - grow, hi = b.hi[a] + grow;
+    if (d[a] == 0.0f) {
+      if (o[a] < lo || o[a] > hi) t0 = kInfinity;
+      continue;
+    }
+    const float ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+}
+
 namespace {
 
 constexpr int64_t kChunk = 4096;  // light paths per work item (and random stream)
@@ -58,34 +80,11 @@ PhotonParent light_parent(const scene::Scene& scene, core::Rng rng, std::vector<
   return parent;
 }
 
-// The part [t0, t1] of the ray o + t d (d unit) inside the scene's bounds grown by one
-// diagonal on every side (the clip of a beam, photon_tracer.h); t0 > t1 if it misses.
-void tracer_beam_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1) {
-  const Bounds3& b = scene.bounds();
-  t0 = 0.0f;
-  t1 = kInfinity;
-  if (!b.valid()) {
-    t0 = 1.0f;
-    t1 = 0.0f;
-    return;
-  }
-  const float grow = std::max(b.diagonal(), 1.0f);
-  for (int a = 0; a < 3; ++a) {
-    const float lo = b.lo[a] - grow, hi = b.hi[a] + grow;
-    if (d[a] == 0.0f) {
-      if (o[a] < lo || o[a] > hi) t0 = kInfinity;
-      continue;
-    }
-    const float ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  }
-}
-
 // The short beam of the segment the free flight just sampled (photon_tracer.h): from the
 // ray's origin over `length` (the flight's end), with the throughput before its weight.
 void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMedium& med, const Ray& ray, float length,
-                        const Rgb& beta, int s, int medium, std::vector<MediumBeam>& beams, BeamTraceCounters& bc) {
+                        const Rgb& beta, int s, int medium, bool after_scatter, std::vector<MediumBeam>& beams,
+                        BeamTraceCounters& bc) {
   if (is_black(med.sigma_s) || is_black(beta)) return;  // nothing scatters out of it
   if (!is_finite(beta) || !ray.o.allFinite() || !ray.d.allFinite() || std::isnan(length)) {
     ++bc.dropped;
@@ -93,19 +92,20 @@ void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMediu
   }
   if (!(length > 0.0f)) return;  // an empty segment
   float t0 = 0.0f, t1 = 0.0f;
-  tracer_beam_clip(scene, ray.o, ray.d, t0, t1);
+  grown_bounds_clip(scene, ray.o, ray.d, t0, t1);
   const float begin = std::max(t0, 0.0f), end = std::min(t1, length);
   if (begin > 0.0f || end < length) ++bc.clipped;
   if (!(end > begin) || !std::isfinite(end)) return;  // wholly outside the grown bounds
-  beams.push_back(
-      MediumBeam{ray.o, ray.d, end, begin, beta, int16_t(s), int16_t(medium), uint32_t(beams.size())});
+  beams.push_back(MediumBeam{ray.o, ray.d, end, begin, beta, int16_t(s), int16_t(medium), uint32_t(beams.size()),
+                             after_scatter});
   ++bc.stored;
 }
 
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
                std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
                std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc,
-               std::vector<PhotonParent>* beam_parents) {
+               std::vector<PhotonParent>* beam_parents, std::vector<MediumPlane>* planes, PlaneTraceCounters& plc,
+               core::Rng& plane_rng) {
   ++c.paths;
   Ray ray;
   Rgb beta;
@@ -122,9 +122,13 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
   int nulls = 0;
   parent.medium = medium;
   // Russian roulette after the bounce that makes segment s (relative to the emitted power).
+  float q_last = 1.0f;         // the last roulette's survival probability (a plane's q)
+  bool after_scatter = false;  // the ray starts at a medium scattering event
   auto survive = [&](int segment) {
+    q_last = 1.0f;
     if (segment <= params.rr_depth) return true;
     const float q = std::min(0.95f, max_component(beta) / beta0);
+    q_last = q;
     if (!(rng.uniform() < q)) {
       ++c.rr_terminated;
       return false;
@@ -139,9 +143,12 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
       if (beams) {
         const size_t before = beams->size();
-        tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, *beams, bc);
+        tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, after_scatter, *beams, bc);
         if (beam_parents && beams->size() > before) beam_parents->push_back(parent);
       }
+      const Vec3 seg_o = ray.o, seg_d = ray.d;  // the segment and its throughput (a plane's a0, w0, beta)
+      const float seg_end = found ? hit.t : kInfinity;
+      const Rgb beta_a = beta;
       beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
       if (is_black(beta)) return;
       if (ff.scattered) {
@@ -168,6 +175,12 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         ray.tmin = 0.0f;
         ray.tmax = kInfinity;
         if (!survive(++s)) return;
+        if (planes) {
+          const float u_plane_channel = plane_rng.uniform(), u_plane = plane_rng.uniform();
+          record_plane(scene, med, seg_o, seg_d, seg_end, ray.d, beta_a, q_last, s, medium, u_plane_channel, u_plane,
+                       *planes, plc);
+        }
+        after_scatter = true;
         found = scene.intersect(ray, hit);
         continue;
       }
@@ -180,6 +193,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         return;
       }
       medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
+      after_scatter = false;
       ray = scene.continue_ray(hit, ray.d);  // the one continuation rule (scene/scene.h)
       found = scene.trace_from(hit, ray.d, hit);
       continue;
@@ -209,6 +223,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
     medium = scene::medium_toward(hit, wo, medium, cam_medium);
     if (parents) parent.medium = medium;
     if (!survive(++s)) return;
+    after_scatter = false;
     ray = scene.continue_ray(hit, wo);
     found = scene.trace_from(hit, wo, hit);
   }
@@ -219,7 +234,8 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<PhotonParent>* parents, std::vector<MediumBeam>* beams,
-                          BeamTraceCounters* beam_counters, std::vector<PhotonParent>* beam_parents) {
+                          BeamTraceCounters* beam_counters, std::vector<PhotonParent>* beam_parents,
+                          std::vector<MediumPlane>* planes, PlaneTraceCounters* plane_counters) {
   if (!parents || !beams) beam_parents = nullptr;
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
@@ -227,6 +243,8 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
   std::vector<std::vector<MediumBeam>> beam_parts(beams ? static_cast<size_t>(chunks) : 0);
   std::vector<std::vector<PhotonParent>> beam_parent_parts(beam_parents ? static_cast<size_t>(chunks) : 0);
   std::vector<BeamTraceCounters> beam_chunk_counters(static_cast<size_t>(chunks));
+  std::vector<std::vector<MediumPlane>> plane_parts(planes ? static_cast<size_t>(chunks) : 0);
+  std::vector<PlaneTraceCounters> plane_chunk_counters(static_cast<size_t>(chunks));
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
   core::parallel_for(
@@ -238,9 +256,12 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
         std::vector<PhotonParent>* pp = parents ? &parent_parts[size_t(k)] : nullptr;
         std::vector<MediumBeam>* bp = beams ? &beam_parts[size_t(k)] : nullptr;
         std::vector<PhotonParent>* bpp = beam_parents ? &beam_parent_parts[size_t(k)] : nullptr;
+        std::vector<MediumPlane>* plp = planes ? &plane_parts[size_t(k)] : nullptr;
+        // The planes' distances D come from their own stream: the light paths are unchanged.
+        core::Rng plane_rng(params.seed, (uint64_t(params.iteration) << 32) | 0x50000000ull | uint64_t(k));
         for (int64_t i = 0; i < n; ++i)
           trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch, bp,
-                    beam_chunk_counters[size_t(k)], bpp);
+                    beam_chunk_counters[size_t(k)], bpp, plp, plane_chunk_counters[size_t(k)], plane_rng);
         done[size_t(k)] = 1;
       },
       stop);
@@ -263,6 +284,7 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
       beam_parents->reserve(beam_total);
     }
   }
+  if (planes) planes->clear();
   for (size_t k = 0; k < parts.size(); ++k) {
     const uint32_t offset = uint32_t(out.size());
     for (MediumPhoton& ph : parts[k]) ph.index += offset;  // chunk-local -> global
@@ -274,6 +296,12 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
       beams->insert(beams->end(), beam_parts[k].begin(), beam_parts[k].end());
       if (beam_parents) beam_parents->insert(beam_parents->end(), beam_parent_parts[k].begin(), beam_parent_parts[k].end());
       if (beam_counters) *beam_counters += beam_chunk_counters[k];
+    }
+    if (planes) {
+      const uint32_t plane_offset = uint32_t(planes->size());
+      for (MediumPlane& pl : plane_parts[k]) pl.index += plane_offset;
+      planes->insert(planes->end(), plane_parts[k].begin(), plane_parts[k].end());
+      if (plane_counters) *plane_counters += plane_chunk_counters[k];
     }
     counters += chunk_counters[k];
   }

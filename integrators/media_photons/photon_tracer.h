@@ -46,6 +46,12 @@
 //    beam/beam_gather.h): a point at distance v < t_surf from a is covered iff the free
 //    flight passed it, with probability P(v) = 1/3 sum_c exp(-sigma_t[c] v) (free_flight.h's
 //    one-channel mixture), so the weight beta_a Tr(v) / P(v) has expectation beta_a Tr(v).
+//    A beam records whether it starts at a scattering event (after_scatter): `plane`
+//    leaves those beams' light to its planes.
+//  * Photon planes (`plane`; photon_plane.h; only when asked for): at every scattering
+//    event that continues (phase sample drawn, roulette survived), the segment it lies on
+//    and the sampled direction, with P_s and q; the plane's extent D along w1 is drawn from
+//    a stream of its own, so nothing else changes.
 #pragma once
 
 #include <atomic>
@@ -55,6 +61,7 @@
 #include "core/math.h"
 #include "core/stats.h"
 #include "gradients/volume_photon_reconnect.h"
+#include "integrators/media_photons/photon_plane.h"
 #include "scene/scene.h"
 
 namespace dp::integrators {
@@ -79,6 +86,7 @@ struct MediumBeam {
   int16_t depth = 0;       // the segment's index from the light (MediumPhoton::depth's convention)
   int16_t medium = -1;     // index into Scene::media()
   uint32_t index = 0;      // position in the traced order
+  bool after_scatter = false;  // a starts at a medium scattering event (`plane` leaves these to planes)
 };
 
 struct BeamTraceCounters {
@@ -115,11 +123,19 @@ struct PhotonTraceParams {
 // every medium segment's short beam (in chunk order, beam.index its position), counted in
 // *beam_counters (required with `beams`). With `beam_parents` (needs `parents` and
 // `beams`), (*beam_parents)[beam.index] is the vertex each beam's light path left last
-// (the parent of every photon on the beam; G-Beam's reconnection).
+// (the parent of every photon on the beam; G-Beam's reconnection). With `planes`, every
+// scattering event's photon plane (photon_plane.h; its D from a stream of its own, so
+// photons, beams and paths are bit-identical with and without planes), counted in
+// *plane_counters (required).
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<gradients::PhotonParent>* parents = nullptr,
                           std::vector<MediumBeam>* beams = nullptr, BeamTraceCounters* beam_counters = nullptr,
-                          std::vector<gradients::PhotonParent>* beam_parents = nullptr);
+                          std::vector<gradients::PhotonParent>* beam_parents = nullptr,
+                          std::vector<MediumPlane>* planes = nullptr, PlaneTraceCounters* plane_counters = nullptr);
+
+// The part [t0, t1] of the ray o + t d (d unit) inside the scene's bounds grown by one
+// diagonal on every side (the clip of beams and planes); t0 > t1 if it misses.
+void grown_bounds_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1);
 
 }  // namespace dp::integrators

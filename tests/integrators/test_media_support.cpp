@@ -39,5 +39,6 @@ TEST_CASE("integrators without media support refuse a scene with media", "[unit]
       CHECK(msg.find('\n') == std::string::npos);
     }
   }
-  CHECK(capable == std::set<std::string>{"path", "volpath", "bdpt", "vpm", "bre", "beam", "gvpm", "gbre", "gbeam"});
+  CHECK(capable == std::set<std::string>{"path", "volpath", "bdpt", "vpm", "bre", "beam", "plane", "gvpm", "gbre",
+                                          "gbeam"});
 }

@@ -1,0 +1,72 @@
+#include "integrators/media_photons/photon_plane.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/media_photons/photon_tracer.h"  // grown_bounds_clip
+#include "scene/media/free_flight.h"
+
+namespace dp::integrators {
+
+float free_flight_distance(const scene::HomogeneousMedium& med, float u_channel, float u) {
+  const int c = std::min(int(u_channel * 3.0f), 2);  // as sample_free_flight
+  const float st = med.sigma_t()[c];
+  return st > 0.0f ? -std::log1p(-u) / st : kInfinity;
+}
+
+void record_plane(const scene::Scene& scene, const scene::HomogeneousMedium& med, const Vec3& a0, const Vec3& w0,
+                  float t_surf, const Vec3& w1, const Rgb& beta_a0, float q, int depth_b, int medium, float u_channel,
+                  float u, std::vector<MediumPlane>& planes, PlaneTraceCounters& counters) {
+  if (is_black(med.sigma_s) || is_black(beta_a0)) return;  // nothing scatters
+  const float p_scatter = 1.0f - scene::free_flight_pass_probability(med, t_surf);
+  if (!is_finite(beta_a0) || !a0.allFinite() || !w0.allFinite() || !w1.allFinite() || !(p_scatter > 0.0f) ||
+      !(q > 0.0f) || std::isnan(t_surf)) {
+    ++counters.dropped;
+    return;
+  }
+  float c0 = 0.0f, c1 = 0.0f;
+  grown_bounds_clip(scene, a0, w0, c0, c1);
+  const float t0b = std::max(c0, 0.0f), t0e = std::min(c1, t_surf);
+  bool clipped = t0b > 0.0f || t0e < t_surf;
+  if (!(t0e > t0b) || !std::isfinite(t0e)) {
+    ++counters.dropped;
+    return;
+  }
+  // t1 up to which a0 + t0 w0 + t1 w1 (t0 in [t0b, t0e]) can still lie in the grown box:
+  // per axis, lo <= x + t1 w1[a] <= hi for x in the range of a0[a] + t0 w0[a].
+  const Bounds3& b = scene.bounds();
+  const float grow = std::max(b.diagonal(), 1.0f);
+  float t1_box = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    if (w1[a] == 0.0f) continue;
+    const float x0 = a0[a] + t0b * w0[a], x1 = a0[a] + t0e * w0[a];
+    const float t =
+        w1[a] > 0.0f ? (b.hi[a] + grow - std::min(x0, x1)) / w1[a] : (b.lo[a] - grow - std::max(x0, x1)) / w1[a];
+    t1_box = std::min(t1_box, t);
+  }
+  const float d = free_flight_distance(med, u_channel, u);
+  if (t1_box < d) clipped = true;
+  const float t1e = std::min(d, t1_box);
+  if (!(t1e > 0.0f) || !std::isfinite(t1e)) {
+    ++counters.dropped;
+    return;
+  }
+  if (clipped) ++counters.clipped;
+  MediumPlane pl;
+  pl.a0 = a0;
+  pl.w0 = w0;
+  pl.w1 = w1;
+  pl.t0_begin = t0b;
+  pl.t0_end = t0e;
+  pl.t1_end = t1e;
+  pl.p_scatter = p_scatter;
+  pl.q = q;
+  pl.beta = beta_a0;
+  pl.depth = int16_t(depth_b);
+  pl.medium = int16_t(medium);
+  pl.index = uint32_t(planes.size());
+  planes.push_back(pl);
+  ++counters.stored;
+}
+
+}  // namespace dp::integrators
