@@ -76,6 +76,30 @@ Ray anchored_ray(const scene::Scene& scene, const Vec3& p, const Vec3& w) {
 
 namespace {
 
+// v.wi: the unit direction from v toward prev (exactly toward a light at infinity);
+// false if they coincide.
+bool point_back(const BidirVertex& prev, BidirVertex& v) {
+  if (prev.infinite()) {
+    v.wi = prev.sp.ng;
+    return true;
+  }
+  const Vec3 d = prev.sp.p - v.sp.p;
+  const float len = d.norm();
+  if (!(len > 0.0f)) return false;
+  v.wi = d / len;
+  return true;
+}
+
+// Ends the edge into v with its last sub-segment (medium, len): v's free-flight factors
+// (bidir_media.h), and a fresh chain for the next edge.
+void close_edge(const scene::Scene& scene, FlightChain& chain, int medium, float len, bool prev_medium,
+                BidirVertex& v) {
+  chain.finish(scene, medium, len, prev_medium, v.kind == BidirKind::medium);
+  v.ff_fwd = chain.to_b;
+  v.ff_rev = chain.to_a;
+  chain = FlightChain{};
+}
+
 // Continues `path` (holding its start vertex) along `ray`; `beta` is the throughput
 // carried by the ray. Densities from vertex positions (bidir_vertex.h).
 // `from`: the surface vertex the ray leaves (anchored at it), or null for a ray from an
@@ -119,18 +143,8 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
         v.sp.p = ray.at(ff.t);
         v.sp.ng = Vec3::Zero();
         v.medium = int16_t(medium);
-        if (prev.infinite()) {
-          v.wi = prev.sp.ng;
-        } else {
-          const Vec3 d = prev.sp.p - v.sp.p;
-          const float len = d.norm();
-          if (!(len > 0.0f)) break;
-          v.wi = d / len;
-        }
-        chain.finish(scene, medium, ff.t, prev_medium, true);
-        v.ff_fwd = chain.to_b;
-        v.ff_rev = chain.to_a;
-        chain = FlightChain{};
+        if (!point_back(prev, v)) break;
+        close_edge(scene, chain, medium, ff.t, prev_medium, v);
         v.beta = beta;
         set_densities(scene, path.data(), path.size(), v, mode);
         path.push_back(v);
@@ -173,20 +187,10 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
       continue;
     }
     BidirVertex v = surface_vertex_at(hit);
-    if (prev.infinite()) {
-      v.wi = prev.sp.ng;  // exactly toward the light at infinity
-    } else {
-      const Vec3 d = prev.sp.p - hit.p;
-      const float len = d.norm();
-      if (!(len > 0.0f)) break;
-      v.wi = d / len;
-    }
+    if (!point_back(prev, v)) break;
     if (media) {
       v.medium = int16_t(medium);
-      chain.finish(scene, medium, hit.t, prev_medium, false);
-      v.ff_fwd = chain.to_b;
-      v.ff_rev = chain.to_a;
-      chain = FlightChain{};
+      close_edge(scene, chain, medium, hit.t, prev_medium, v);
     }
     v.beta = beta;
     set_densities(scene, path.data(), path.size(), v, mode);

@@ -186,7 +186,6 @@ void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, Gvpm
     return;
   }
   const scene::HenyeyGreenstein phase(med.phase);
-  const Vec3 to_camera = -seg.ray.d;
   const float r = m_radius;
   m_photons->query_beam(seg.ray.o - r * seg.ray.d, seg.ray.d, seg.len + 2.0f * r, r,
                         [&](const MediumPhoton& ph, float tq, float d2) {
@@ -197,22 +196,28 @@ void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, Gvpm
                           }
                           float lo = 0, hi = 0;
                           if (!point_beam_chord(tq - r, d2, r, seg.len, lo, hi)) return;
-                          const float t = std::min(lo + rng.uniform() * (hi - lo), std::nextafter(hi, lo));
-                          GvpmGatherPoint gp;
-                          gp.segment = k;
-                          gp.t = t;
-                          gp.pdf = m_settings.fault == GvpmFault::chord_as_diameter ? 0.5f / r : 1.0f / (hi - lo);
-                          gp.d = seg.ray.at(t);
-                          gp.first = uint32_t(sc.terms.size());
-                          gp.count = 1;
-                          ++counters.gather_points;
-                          const Rgb v = seg.beta * scene::transmittance(med, t) * float(m_scale / double(gp.pdf)) *
-                                        phase.eval(ph.w, to_camera) * ph.beta;
-                          if (is_black(v) || !(gp.pdf > 0.0f) || !std::isfinite(gp.pdf)) return;
-                          ++counters.photons_gathered;
-                          sc.terms.push_back({&ph, v});
-                          sc.points.push_back(gp);
+                          chord_term(seg, k, med, phase, ph, lo, hi, rng, sc, counters);
                         });
+}
+
+void GvpmTracer::chord_term(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med,
+                            const scene::HenyeyGreenstein& phase, const MediumPhoton& ph, float lo, float hi,
+                            core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
+  const float t = std::min(lo + rng.uniform() * (hi - lo), std::nextafter(hi, lo));
+  GvpmGatherPoint gp;
+  gp.segment = k;
+  gp.t = t;
+  gp.pdf = m_settings.fault == GvpmFault::chord_as_diameter ? 0.5f / m_radius : 1.0f / (hi - lo);
+  gp.d = seg.ray.at(t);
+  gp.first = uint32_t(sc.terms.size());
+  gp.count = 1;
+  ++counters.gather_points;
+  const Rgb v = seg.beta * scene::transmittance(med, t) * float(m_scale / double(gp.pdf)) *
+                phase.eval(ph.w, -seg.ray.d) * ph.beta;
+  if (is_black(v) || !(gp.pdf > 0.0f) || !std::isfinite(gp.pdf)) return;
+  ++counters.photons_gathered;
+  sc.terms.push_back({&ph, v});
+  sc.points.push_back(gp);
 }
 
 void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc,
@@ -230,7 +235,6 @@ void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, Gvp
   const float s = m_beams->clip(seg.ray.o, seg.ray.d, seg.len, r);  // no beam lies beyond
   if (!(s > 0.0f)) return;
   const scene::HenyeyGreenstein phase(med.phase);
-  const Vec3 to_camera = -seg.ray.d;
   const bool chord_pdf = m_settings.fault != GvpmFault::beam_chord_ignored;
   m_beams->query_segment(seg.ray.o, seg.ray.d, s, r, [&](const MediumBeam& beam, float v0, float v1) {
     if (beam.medium != seg.medium) return;
@@ -246,23 +250,10 @@ void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, Gvp
     const Vec3 b = beam.a + v * beam.w;
     float lo = 0, hi = 0;
     if (!point_beam_chord(seg.ray.o, seg.ray.d, seg.len, b, r, lo, hi)) return;  // b(v) farther than r
-    const float t = std::min(lo + rng.uniform() * (hi - lo), std::nextafter(hi, lo));
     const Rgb weight = beam.beta * beam_point_weight(med, v) * med.sigma_s * float(chord_pdf ? chord_b : 1.0);
-    GvpmGatherPoint gp;
-    gp.segment = k;
-    gp.t = t;
-    gp.pdf = 1.0f / (hi - lo);
-    gp.d = seg.ray.at(t);
-    gp.first = uint32_t(sc.terms.size());
-    gp.count = 1;
-    ++counters.gather_points;
-    const Rgb value = seg.beta * scene::transmittance(med, t) * float(m_scale / double(gp.pdf)) *
-                      phase.eval(beam.w, to_camera) * weight;
-    if (is_black(value) || !(gp.pdf > 0.0f) || !std::isfinite(gp.pdf)) return;
-    ++counters.photons_gathered;
+    // The photon drawn on the beam, kept at a stable address for its term.
     sc.beam_photons.push_back(MediumPhoton{b, beam.w, weight, beam.depth, beam.medium, beam.index});
-    sc.terms.push_back({&sc.beam_photons.back(), value});
-    sc.points.push_back(gp);
+    chord_term(seg, k, med, phase, sc.beam_photons.back(), lo, hi, rng, sc, counters);
   });
 }
 

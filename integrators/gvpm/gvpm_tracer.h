@@ -49,6 +49,7 @@
 #include "integrators/media_photons/media_camera.h"
 #include "integrators/media_photons/photon_bvh.h"
 #include "integrators/pair_splats.h"
+#include "scene/media/phase_function.h"
 
 namespace dp::integrators {
 
@@ -109,6 +110,11 @@ class GvpmTracer {
   void gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
   void gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
   void gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
+  // gbre / gbeam: photon ph (within r of the segment; [lo, hi] its chord on it) gets a
+  // gather point uniform on the chord; adds the (gather point, photon) term.
+  void chord_term(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med,
+                  const scene::HenyeyGreenstein& phase, const MediumPhoton& ph, float lo, float hi, core::Rng& rng,
+                  GvpmScratch& sc, GvpmCounters& counters) const;
   void offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h, GvpmCounters& counters) const;
 
   const scene::Scene& m_scene;

@@ -80,38 +80,33 @@ namespace {
 constexpr int kBoxRes = 32, kBoxDepth = 8, kBoxRuns = 8;
 }  // namespace
 
-// The media box with fog: the image mean against volpath's, Welch over 8 runs a side at 1%.
-// The beam part's radius is 0.2% of the diagonal: at test_beam's 1% its 3D blur loses ~0.5% of
-// the image (measured at the gather: -1% of the beams' light on fog segments, -6% inside the
-// dense smoke ball, kernel mass lost at medium boundaries), which `plane`'s lower variance (se
-// 0.0011 against beam's 0.0026) resolves; that bias shrinks with r (0.6316 at 1%, 0.6388 at
-// 0.2%, volpath 0.6406).
-TEST_CASE("plane: converges to volpath's image mean on a box with media", "[stat]") {
-  const auto s = test::media_box(true, kBoxRes);
+namespace {
+// plane's image mean against volpath's, Welch over `runs` runs a side at 1% (volpath 32 spp,
+// plane 4 iterations of `photons` light paths, beam radius 0.2%); then with the planted
+// defect `bad`, which must be rejected.
+void plane_vs_volpath(const scene::Scene& s, const char* name, int runs, int depth, uint64_t ref_seed,
+                      uint64_t seed, int photons, PlaneFault bad) {
   test::Runs ref;
-  for (int k = 0; k < kBoxRuns; ++k) {
+  for (int k = 0; k < runs; ++k) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
-    test::add_run(ref,
-                  {image_mean(in->render(*s, test::quiet_options(32, 500 + uint64_t(k), kBoxDepth)).layers[0].image)});
+    test::add_run(ref, {image_mean(in->render(s, test::quiet_options(32, ref_seed + uint64_t(k), depth)).layers[0].image)});
   }
-  for (PlaneFault fault : {PlaneFault::none, PlaneFault::no_scatter_probability}) {
-    test::Runs runs;
+  for (PlaneFault fault : {PlaneFault::none, bad}) {
+    test::Runs sums;
     int64_t hits = 0, occluded = 0;
-    for (int k = 0; k < kBoxRuns; ++k) {
-      const auto r = render_plane(*s, fault, 1000, 4, 700 + uint64_t(k), kBoxDepth, 0.002);
+    for (int k = 0; k < runs; ++k) {
+      const auto r = render_plane(s, fault, photons, 4, seed + uint64_t(k), depth, 0.002);
       hits += r.stats.get("plane.intersections");
       occluded += r.stats.get("plane.occluded");
-      test::add_run(runs, {image_mean(r.layers[0].image)});
+      test::add_run(sums, {image_mean(r.layers[0].image)});
     }
-    const test::Moments m = test::moments(runs[0]), mr = test::moments(ref[0]);
+    const test::Moments m = test::moments(sums[0]), mr = test::moments(ref[0]);
     const double ratio = test::welch_ratio(m, mr, 0.01);
-    std::printf(
-        "[plane fault %d vs volpath, media box] mean %.4f (se %.4f) vs "
-        "%.4f (se %.4f): |t|/crit %.2f; %lld hits, "
-        "%lld occluded\n",
-        int(fault), m.mean, std::sqrt(m.var / kBoxRuns), mr.mean, std::sqrt(mr.var / kBoxRuns), ratio, (long long)hits,
-        (long long)occluded);
+    std::printf("[plane fault %d vs volpath, %s] mean %.4f (se %.4f) vs %.4f (se %.4f): |t|/crit %.2f; %lld hits, "
+                "%lld occluded\n",
+                int(fault), name, m.mean, std::sqrt(m.var / runs), mr.mean, std::sqrt(mr.var / runs), ratio,
+                (long long)hits, (long long)occluded);
     if (fault == PlaneFault::none) {
       CHECK(ratio < 1.0);
       CHECK(occluded > 0);
@@ -120,44 +115,25 @@ TEST_CASE("plane: converges to volpath's image mean on a box with media", "[stat
     }
   }
 }
+}  // namespace
 
-// The occluded furnace against volpath (Welch over 8 runs a side at 1%); the planted defect:
-// the dropped 1/|det|. (The skipped shadow ray changes this image by ~1%, below its
-// resolution: test_plane.cpp's paired test isolates the planes' light.)
+// The media box with fog; the planted defect: no 1 / P_s. The beam part's radius is 0.2% of
+// the diagonal: at test_beam's 1% its 3D blur loses ~0.5% of the image (measured at the
+// gather: -1% of the beams' light on fog segments, -6% inside the dense smoke ball, kernel
+// mass lost at medium boundaries), which `plane`'s lower variance (se 0.0011 against
+// beam's 0.0026) resolves; that bias shrinks with r (0.6316 at 1%, 0.6388 at 0.2%,
+// volpath 0.6406).
+TEST_CASE("plane: converges to volpath's image mean on a box with media", "[stat]") {
+  const auto s = test::media_box(true, kBoxRes);
+  plane_vs_volpath(*s, "media box", kBoxRuns, kBoxDepth, 500, 700, 1000, PlaneFault::no_scatter_probability);
+}
+
+// The occluded furnace; the planted defect: the dropped 1/|det|. (The skipped shadow ray
+// changes this image by ~1%, below its resolution: test_plane.cpp's paired test isolates
+// the planes' light.)
 TEST_CASE("plane: converges to volpath's image mean on an occluded furnace", "[stat]") {
-  constexpr int kRes = 24, kRuns = 8, kDepth = 1000;
-  const auto s = test::occluded_furnace(kRes);
-  test::Runs ref;
-  for (int k = 0; k < kRuns; ++k) {
-    integrators::Settings settings;
-    auto in = integrators::make_integrator("volpath", settings);
-    test::add_run(ref,
-                  {image_mean(in->render(*s, test::quiet_options(32, 300 + uint64_t(k), kDepth)).layers[0].image)});
-  }
-  for (PlaneFault fault : {PlaneFault::none, PlaneFault::no_det}) {
-    test::Runs runs;
-    int64_t hits = 0, occluded = 0;
-    for (int k = 0; k < kRuns; ++k) {
-      const auto r = render_plane(*s, fault, 4000, 4, 900 + uint64_t(k), kDepth, 0.002);
-      hits += r.stats.get("plane.intersections");
-      occluded += r.stats.get("plane.occluded");
-      test::add_run(runs, {image_mean(r.layers[0].image)});
-    }
-    const test::Moments m = test::moments(runs[0]), mr = test::moments(ref[0]);
-    const double ratio = test::welch_ratio(m, mr, 0.01);
-    std::printf(
-        "[plane fault %d vs volpath, occluded furnace] mean %.4f (se "
-        "%.4f) vs %.4f (se %.4f): |t|/crit %.2f; "
-        "%lld hits, %lld occluded\n",
-        int(fault), m.mean, std::sqrt(m.var / kRuns), mr.mean, std::sqrt(mr.var / kRuns), ratio, (long long)hits,
-        (long long)occluded);
-    if (fault == PlaneFault::none) {
-      CHECK(ratio < 1.0);
-      CHECK(occluded > 0);
-    } else {
-      CHECK(ratio > 1.0);
-    }
-  }
+  const auto s = test::occluded_furnace(24);
+  plane_vs_volpath(*s, "occluded furnace", 8, 1000, 300, 900, 4000, PlaneFault::no_det);
 }
 
 // The light pass: recording planes changes no photon and no beam (their D has its own stream),
