@@ -125,18 +125,21 @@ float GvpmTracer::distance_pdf(const scene::HomogeneousMedium& m, float len, flo
 
 void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
   const int budget = m_max_depth - 1;
-  if (m_settings.gather == GvpmGather::beams) {
-    if (budget >= 1 && m_beams && !m_beams->empty() && seg.len > 0.0f) gather_beams(seg, k, rng, sc, counters);
+  const bool beams = m_settings.gather == GvpmGather::beams;
+  const bool no_data = beams ? (!m_beams || m_beams->empty()) : (!m_photons || m_photons->empty());
+  if (budget < 1 || no_data || !(seg.len > 0.0f)) return;
+  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
+  if (is_black(med.sigma_s)) {  // nothing scatters toward the camera here
+    ++counters.empty_segments;
     return;
   }
-  if (budget < 1 || !m_photons || m_photons->empty() || !(seg.len > 0.0f)) return;
-  if (m_beam) return gather_beam(seg, k, rng, sc, counters);
-  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
+  if (beams) return gather_beams(seg, k, med, rng, sc, counters);
+  if (m_beam) return gather_beam(seg, k, med, rng, sc, counters);
   const Rgb st = med.sigma_t();
   int channels[3], n_ch = 0;
   for (int c = 0; c < 3; ++c)
     if (st[c] > 0.0f || std::isfinite(seg.len)) channels[n_ch++] = c;
-  if (n_ch == 0 || is_black(med.sigma_s)) {
+  if (n_ch == 0) {
     ++counters.empty_segments;
     return;
   }
@@ -174,17 +177,12 @@ void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScrat
   }
 }
 
-void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc,
-                             GvpmCounters& counters) const {
+void GvpmTracer::gather_beam(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med, core::Rng& rng,
+                             GvpmScratch& sc, GvpmCounters& counters) const {
   // Point-Beam 3D (Sec. 5.1): every photon within r of the segment, its gather point d
   // drawn uniformly on its chord (p(t) = 1 / |chord|), then shifted as G-VPM's (the
   // distance copied, the mixed photon shift keeps |d'b'| <= r).
   const int budget = m_max_depth - 1;
-  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
-  if (is_black(med.sigma_s)) {
-    ++counters.empty_segments;
-    return;
-  }
   const scene::HenyeyGreenstein phase(med.phase);
   const float r = m_radius;
   m_photons->query_beam(seg.ray.o - r * seg.ray.d, seg.ray.d, seg.len + 2.0f * r, r,
@@ -220,17 +218,12 @@ void GvpmTracer::chord_term(const GvpmSegment& seg, int k, const scene::Homogene
   sc.points.push_back(gp);
 }
 
-void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc,
-                              GvpmCounters& counters) const {
+void GvpmTracer::gather_beams(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med, core::Rng& rng,
+                              GvpmScratch& sc, GvpmCounters& counters) const {
   // Beam-Beam 3D (Sec. 5.2, Fig. 6c): per beam piece within r of the segment one photon b
   // uniform on the piece's chord (beam_gather.h), then its gather point uniform on the
   // camera chord around b (p(t) = 1 / |chord|, as gbre); shifted as gbre's.
   const int budget = m_max_depth - 1;
-  const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
-  if (is_black(med.sigma_s)) {
-    ++counters.empty_segments;
-    return;
-  }
   const float r = m_radius;
   const float s = m_beams->clip(seg.ray.o, seg.ray.d, seg.len, r);  // no beam lies beyond
   if (!(s > 0.0f)) return;

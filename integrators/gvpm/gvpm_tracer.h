@@ -108,8 +108,11 @@ class GvpmTracer {
   // Eq. 14's density of gather distance t on a segment of length len in medium m (channel mixture).
   float distance_pdf(const scene::HomogeneousMedium& m, float len, float t, bool truncated) const;
   void gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
-  void gather_beam(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
-  void gather_beams(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const;
+  // gbre's / gbeam's gathers of segment k (its medium `med` scatters: checked by gather()).
+  void gather_beam(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med, core::Rng& rng, GvpmScratch& sc,
+                   GvpmCounters& counters) const;
+  void gather_beams(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med, core::Rng& rng,
+                    GvpmScratch& sc, GvpmCounters& counters) const;
   // gbre / gbeam: photon ph (within r of the segment; [lo, hi] its chord on it) gets a
   // gather point uniform on the chord; adds the (gather point, photon) term.
   void chord_term(const GvpmSegment& seg, int k, const scene::HomogeneousMedium& med,

@@ -33,6 +33,25 @@ inline bool grown_box_slab_hit(const Vec3& lo, const Vec3& hi, const Vec3& o, co
   return true;
 }
 
+// Where the ray o + t d (d unit) leaves the box [lo - margin, hi + margin], at most t_max;
+// 0 if it misses the box within [0, t_max]. The beam and plane BVHs clip an unbounded
+// camera segment with it (nothing lies beyond their root's grown box).
+inline float grown_box_exit(const Vec3& lo, const Vec3& hi, float margin, const Vec3& o, const Vec3& d, float t_max) {
+  float t0 = 0.0f, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    const float l = lo[a] - margin, h = hi[a] + margin;
+    if (d[a] == 0.0f) {
+      if (o[a] < l || o[a] > h) return 0.0f;
+      continue;
+    }
+    float ta = (l - o[a]) / d[a], tb = (h - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1 ? t1 : 0.0f;
+}
+
 class PhotonBvh {
  public:
   static constexpr uint32_t kLeafSize = 8;

@@ -58,20 +58,7 @@ void PlaneBvh::release() {
 
 float PlaneBvh::clip(const Vec3& o, const Vec3& d, float w_max) const {
   if (m_nodes.empty()) return 0.0f;
-  const Node& root = m_nodes[0];
-  float t0 = 0.0f, t1 = w_max;
-  for (int a = 0; a < 3; ++a) {
-    const float lo = root.lo[a] - 2.0f * root.pad, hi = root.hi[a] + 2.0f * root.pad;
-    if (d[a] == 0.0f) {
-      if (o[a] < lo || o[a] > hi) return 0.0f;
-      continue;
-    }
-    float ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  return t0 <= t1 ? t1 : 0.0f;
+  return grown_box_exit(m_nodes[0].lo, m_nodes[0].hi, 2.0f * m_nodes[0].pad, o, d, w_max);
 }
 
 uint32_t PlaneBvh::build_node(uint32_t first, uint32_t count, int depth) {
