@@ -2,12 +2,13 @@
 // (absent from a user's clone: then the executable exits with 77 before any assertion,
 // which ctest reports as skipped, SKIP_RETURN_CODE in mitsuba_tests.cmake):
 //  * [unit] every scene file loads into a committed scene with lights;
-//  * [slow] path-traced renders of cornell-box, veach-mis and veach-ajar agree with Bitterli's
-//    Tungsten references. The scenes are rendered at a reduced resolution (each render
-//    pixel = the mean over a factor x factor block of reference pixels, our camera's
-//    box filter), K = 16 independent renders give the standard error of every block mean,
-//    and each B x B block of render pixels and the image mean are compared with the
-//    reference by z = (ours - reference) / standard error.
+//  * [slow] path-traced renders of cornell-box, veach-mis and veach-ajar, and volpath and
+//    bdpt renders of volumetric-caustic, are compared with Bitterli's Tungsten references
+//    (the [!mayfail] cases document known differences). The scenes are rendered at a
+//    reduced resolution (each render pixel = the mean over a factor x factor block of
+//    reference pixels, our camera's box filter), K = 16 independent renders give the
+//    standard error of every block mean, and each B x B block of render pixels and the
+//    image mean are compared with the reference by z = (ours - reference) / standard error.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -106,9 +107,16 @@ void check_agreement(const BlockStats& s) {
   CHECK(s.mean_z().maxCoeff() <= mean_z_limit());
 }
 
+// A rectangle of render pixels left out of a comparison (w == 0: none).
+struct PixelRect {
+  int x = 0, y = 0, w = 0, h = 0;
+  bool contains(int px, int py) const { return px >= x && px < x + w && py >= y && py < y + h; }
+};
+
 // K renders at (w, h); reference box-downsampled by `factor`; blocks of b x b pixels.
+// `excluded` (whole blocks) is left out of the block count and of the image mean.
 BlockStats compare(const Scene& scene, const core::Image& ref, int factor, int b, int spp, int k, int max_depth,
-                   const char* integrator = "path") {
+                   const char* integrator = "path", PixelRect excluded = {}) {
   const int w = scene.camera().width(), h = scene.camera().height();
   REQUIRE(ref.width() == w * factor);
   REQUIRE(ref.height() == h * factor);
@@ -136,11 +144,18 @@ BlockStats compare(const Scene& scene, const core::Image& ref, int factor, int b
       ref_var(x / factor, y / factor) += r * r / 1.25f;
     }
   BlockStats st;
+  auto included = [&](int bx, int by, int bw, int bh) {
+    int n = 0;
+    for (int y = by; y < by + bh; ++y)
+      for (int x = bx; x < bx + bw; ++x) n += excluded.contains(x, y) ? 0 : 1;
+    return n;
+  };
   auto block_mean = [&](const core::Image& img, int bx, int by, int bw, int bh) {
     Rgbd s = Rgbd::Zero();
     for (int y = by; y < by + bh; ++y)
-      for (int x = bx; x < bx + bw; ++x) s += img(x, y).cast<double>();
-    return Rgbd(s / double(bw * bh));
+      for (int x = bx; x < bx + bw; ++x)
+        if (!excluded.contains(x, y)) s += img(x, y).cast<double>();
+    return Rgbd(s / double(included(bx, by, bw, bh)));
   };
   auto z_of = [&](int bx, int by, int bw, int bh, Rgbd& mean, Rgbd& se, Rgbd& refm) {
     Rgbd sum = Rgbd::Zero(), sum2 = Rgbd::Zero();
@@ -152,13 +167,17 @@ BlockStats compare(const Scene& scene, const core::Image& ref, int factor, int b
     mean = sum / double(k);
     se = ((sum2 / double(k) - mean * mean).max(0.0) * (double(k) / double(k - 1)) / double(k)).sqrt();
     refm = block_mean(small, bx, by, bw, bh);
-    const double n_ref = double(bw * bh) * double(factor * factor);
+    const double n_ref = double(included(bx, by, bw, bh)) * double(factor * factor);
     const Rgbd ref_se2 = block_mean(ref_var, bx, by, bw, bh) / double(factor * factor) / n_ref;
     se = (se * se + ref_se2).sqrt();
     return Rgbd((mean - refm).abs() / se.max(1e-12));
   };
   for (int by = 0; by + b <= h; by += b) {
     for (int bx = 0; bx + b <= w; bx += b) {
+      if (included(bx, by, b, b) == 0) {
+        st.map += "    -- ";
+        continue;
+      }
       Rgbd m, se, r;
       const Rgbd z = z_of(bx, by, b, b, m, se, r);
       ++st.blocks;
@@ -213,6 +232,62 @@ std::unique_ptr<Scene> volumetric_caustic_128() {
   REQUIRE(scene->media()[0].phase.type == PhaseFunctionDesc::Type::isotropic);
   REQUIRE(scene->integrator_defaults().type == "volpath");
   return scene;
+}
+
+// The depth the volumetric-caustic tests render at: the file's maxDepth 7 minus 2.
+//  * minus 1: Bitterli's Mitsuba exports write Tungsten's max_bounces + 1 (the rule of
+//    the other Bitterli scenes above), so Tungsten's max_bounces was 6;
+//  * minus 1 more: Tungsten counts the index-matched front face of the box as a bounce,
+//    deltapath's volpath and bdpt do not ("Index-matched boundaries are not vertices",
+//    integrators/volpath/volpath_tracer.h). In tunabrain/tungsten @ 88ea020
+//    (src/core/integrators/path_tracer/PathTracer.cpp) the loop increments `bounce` once
+//    per iteration, and an iteration that passes a surface through its forward lobe
+//    (TraceBase::handleSurface) is an iteration; shadow rays also count each forward
+//    crossing (TraceBase::generalizedShadowRayImpl). Mitsuba 0.5's volpath does the same
+//    (`rRec.depth++` for a BSDF::ENull sample), so this is the files' depth convention,
+//    not only Tungsten's. Every camera path enters the fog through that face exactly once
+//    before its first vertex, and nothing outside the box sends light back in, so
+//    Tungsten's 6 bounces are 5 of our segments for every path of this scene.
+// Measured (bdpt, luminance per 8 x 8 block, image means without the light's block,
+// see below): at 5 (512 spp) 251 of the 255 blocks are 0.99-1.01 x the reference, the
+// other four lie on the glass ball, where the reference has single-sample fireflies
+// (0.80-0.96 x), and the mean is 0.996 x in each channel; at 6 (64 spp), the file's rule
+// for the other scenes, the blocks are 1.04-1.56 x (growing away from the light) and
+// the mean 1.14-1.16 x; at 4 (64 spp) the blocks are 0.37-0.95 x and the mean 0.80 x.
+int volumetric_caustic_depth(const Scene& scene) {
+  REQUIRE(scene.integrator_defaults().max_depth == 7);
+  return scene.integrator_defaults().max_depth - 2;
+}
+
+// The block (render pixels x 56-63, y 8-15) that holds the directly visible light is
+// left out of the volumetric-caustic comparisons: the reference is not a rendering of
+// the file's emitter there. The light (5 x 4 mm, radiance (541127, 381972, 127324),
+// facing down, seen from below at cos 0.138 through 1.04 of fog, T = 0.3535) should add
+// E T (solid angle of the light) / (solid angle of a pixel) = (95800, 67600, 22500),
+// summed over the reference pixels it covers (in units of one 1024^2 pixel). Our renders
+// add (98700, 69700, 23200) (the few % more is the in-scattered glow around it), the
+// reference only (17600, 10700, 4200) = 0.16-0.19 x, with the colour 4.1 : 2.5 : 1
+// instead of the emitter's 4.25 : 3 : 1. Its brightest pixels sit just above powers of
+// two in every channel ((4108, 2088, 1025) and (4108, 2086, 1025)), while the reference's
+// single-sample fireflies of the same light seen through the ball elsewhere have the
+// emitter's colour exactly ((62.6, 44.2, 14.7), 4.25 : 3 : 1). The emitter's radiance,
+// size and the fog are confirmed by the rest of the image, which matches per channel
+// (see above), and no renderer setting we know of dims an emitter's directly seen pixels
+// and changes their colour while leaving the light it casts unchanged; so this is taken
+// to be an artifact of how those few pixels were accumulated or stored in the
+// reference, cause unknown. With the block included the image mean is 1.17-1.18 x the
+// reference, all of the excess in this one block (3.5 x).
+constexpr PixelRect kCausticLightBlock{56, 8, 8, 8};
+
+core::Image read_volumetric_caustic_reference() {
+  core::Image ref = core::read_exr((shared_scenes() / "volumetric-caustic" / "TungstenRender.exr").string());
+  // The excluded block is the one holding the reference's brightest pixel (the light).
+  size_t brightest = 0;
+  for (size_t i = 0; i < ref.size(); ++i)
+    if (ref[i].sum() > ref[brightest].sum()) brightest = i;
+  const int bx = int(brightest % size_t(ref.width())), by = int(brightest / size_t(ref.width()));
+  REQUIRE(kCausticLightBlock.contains(bx / 8, by / 8));
+  return ref;
 }
 
 }  // namespace
@@ -281,36 +356,48 @@ TEST_CASE("mitsuba: veach-mis agrees with the Tungsten reference", "[slow]") {
 // None of the shared files is Tungsten's scene exactly: scene_v3.xml (Mitsuba 3's gallery,
 // sigma_t 0.5) fills a cube around the box, so the reference's black frame is foggy;
 // scene_v0.6.xml keeps the fog inside the box (an index-matched front face) but was edited
-// to HG g = 0.5. Public Tungsten-format copies of the scene have sigma_s 1, isotropic, so
-// this renders v0.6 with an isotropic phase at the file's max_depth - 1 (6, the rule of
-// the other Bitterli exports). Measured (16 renders x 16 spp): image mean 1.33 x the
-// reference +- 0.22 (the caustic is reachable only by BSDF paths hitting the tiny light:
-// fireflies), the smooth blocks 1.05-1.25 x, the caustic's blocks 0.24-0.5 x: a
-// unidirectional tracer cannot meet 1% here at test budgets, and the remaining ~10-20%
-// in smooth blocks is unexplained (depth or light differences to Tungsten's file are
-// candidates). Kept as [!mayfail] to document it.
+// to HG g = 0.5 (the repository's own earlier copy of the file, zhiwei-c/Monte-Carlo-
+// Path-Tracing @ 1314c0f archive/resources/scene/volumetric-caustic/scene_v0.6.xml, has
+// no phase element, i.e. isotropic, and is otherwise the same apart from resolution and
+// sample count; public Tungsten-format copies have sigma_s 1, isotropic). So this renders
+// v0.6 with an isotropic phase, at max_depth 5 (volumetric_caustic_depth: Tungsten counts
+// the front face as a bounce) and without the block of the directly visible light (the
+// reference is not a rendering of the emitter there: kCausticLightBlock). With these the
+// bdpt case below agrees; this one does not, because volpath cannot sample the caustic:
+// light reaches the caustic's fog and floor only through the glass ball, which blocks
+// next-event estimation, so only the phase or BSDF samples that refract through the ball
+// onto the 5 x 4 mm light find it (rare, huge fireflies). Measured (16 renders x 16 spp):
+// image mean 0.936 x the reference (z 15), 72 of 255 blocks beyond, the caustic's blocks
+// 0.19-0.90 x, most others 0.90-1.03 x (the light that reaches them via the caustic is
+// missing too; a few blocks with one firefly are up to 1.8 x). One render at 2048 spp
+// gives the same 0.94 x. With a 10 x 10 larger light of the same power, volpath's
+// caustic blocks (512 spp) lie on both sides of bdpt's (0.27-2.07 x) instead of all
+// below: the missing part is in rare, large samples, not a bias of volpath. Kept as
+// [!mayfail]: a unidirectional tracer cannot meet 1 % here at test budgets.
 TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (volpath)", "[slow][!mayfail]") {
   require_shared_or_skip();
   const auto scene = volumetric_caustic_128();
-  const core::Image ref = core::read_exr((shared_scenes() / "volumetric-caustic" / "TungstenRender.exr").string());
-  const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, scene->integrator_defaults().max_depth - 1);
+  const core::Image ref = read_volumetric_caustic_reference();
+  const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, volumetric_caustic_depth(*scene), "path",
+                               kCausticLightBlock);
   report("volumetric-caustic", s);
   for (int c = 0; c < 3; ++c) CHECK(std::abs(s.mean[c] / s.ref_mean[c] - 1.0) < 0.01);
   check_agreement(s);
 }
 
 // The same with bdpt, which reaches the caustic by light tracing through the glass
-// (light -> glass -> medium vertex -> camera) instead of by chance. Measured (16 x 16 spp,
-// session 16): image mean 1.33 x the reference, as volpath's 1.33 -- the two agree, so
-// the gap is the scene's translation, not the integrators; the smooth blocks 1.04-1.50 x.
-// Rendered at depth 4 instead of 6 the mean is 0.98-1.01 x but 255 of 256 blocks are off
-// (a different spatial distribution), at depth 5 it is 1.18 x: no depth rule matches
-// Tungsten's file. Kept as [!mayfail], with the volpath case, to document it.
-TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (bdpt)", "[slow][!mayfail]") {
+// (light -> glass -> medium or floor vertex -> camera). Measured (16 x 16 spp): image mean
+// (0.9975, 0.9974, 0.9972) x the reference, z 1.7-2.0 of the limit 3.48, 0 of 255 blocks
+// beyond 4.12 (max |z| 3.55); the lowest blocks are the glass ball's (0.82-0.96 x), where
+// the reference has single-sample fireflies of the light seen through the ball. Before
+// the two corrections above (depth 6 and the light's block included) the mean was 1.33 x
+// (1.04-1.55 x in the smooth blocks): one extra bounce and the light's block made it.
+TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (bdpt)", "[slow]") {
   require_shared_or_skip();
   const auto scene = volumetric_caustic_128();
-  const core::Image ref = core::read_exr((shared_scenes() / "volumetric-caustic" / "TungstenRender.exr").string());
-  const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, scene->integrator_defaults().max_depth - 1, "bdpt");
+  const core::Image ref = read_volumetric_caustic_reference();
+  const BlockStats s = compare(*scene, ref, 8, 8, 16, kRenders, volumetric_caustic_depth(*scene), "bdpt",
+                               kCausticLightBlock);
   report("volumetric-caustic (bdpt)", s);
   for (int c = 0; c < 3; ++c) CHECK(std::abs(s.mean[c] / s.ref_mean[c] - 1.0) < 0.01);
   check_agreement(s);
