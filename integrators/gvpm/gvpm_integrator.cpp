@@ -13,6 +13,8 @@
 #include "integrators/media_photons/volume_kernel.h"
 #include "integrators/tile_scheduler.h"
 #include "integrators/beam/beam_gather.h"
+#include "integrators/plane/plane_gather.h"
+#include "integrators/plane/plane_pass.h"
 #include "integrators/bre/bre_gather.h"
 #include "integrators/vpm/vpm_gather.h"
 
@@ -32,7 +34,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   const double r1 = initial_media_radius(scene, m_settings);
   const std::string prefix = m_settings.name();  // gvpm | gbre
   const bool beam = m_settings.gather == GvpmGather::beam;
-  const bool beams = m_settings.gather == GvpmGather::beams;
+  const bool beams = m_settings.gather == GvpmGather::beams, planes = m_settings.gather == GvpmGather::planes;
   // The gathers of the unshifted camera segments (after the first surface): vpm's, or for
   // gbre bre's Point-Beam 3D (the same estimator as its shifted gathers, integrated).
   VpmSettings vpm;
@@ -47,7 +49,14 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   std::vector<gradients::PhotonParent> beam_parents;
   BeamBvh beam_bvh;
   BeamTraceCounters beam_counters;
+  PlaneSettings plane_settings;  // gplane's later segments: plane's gather (planes + Beam-Beam 3D)
+  static_cast<MediaPhotonSettings&>(plane_settings) = m_settings;
+  plane_settings.piece_scale = m_settings.plane_piece_scale;
+  PlaneBvh plane_bvh;
+  PlanePassCounters plane_counters;
 
+  GatherCounterNames names;  // gplane: also the plane tests, intersections and occluded
+  names.planes = planes;
   GradientPasses passes;
   passes.total = gradients::GradientBuffers(w, h);
   std::vector<core::Stats> thread_stats(static_cast<size_t>(threads)), iter_stats(static_cast<size_t>(threads));
@@ -68,11 +77,19 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
     const int64_t global = share.global(done);
     const float r = float(progressive_radius(r1, global, m_settings.radius_alpha, 3));
     PhotonTraceCounters pc;
-    std::unique_ptr<MediumGather> later;
+    std::unique_ptr<MediumGather> later, primary_unshifted;
     if (media) {  // no photon is traced for a scene without media
       const PhotonTraceParams tp = photon_pass_params(m_settings, options, global, threads);
       std::vector<MediumPhoton> photons;
-      if (beams) {  // only the light paths' beams are kept, with their parents (photon_tracer.h)
+      if (planes) {  // planes and the beams not from scattering events, as `plane` (plane_pass.h)
+        if (!trace_plane_pass(scene, tp, options.stop, r, m_settings.plane_piece_scale, false, pc, plane_counters,
+                              beam_bvh, plane_bvh)) {
+          passes.partial = true;
+          break;
+        }
+        later = std::make_unique<PlaneGather>(scene, plane_settings, beam_settings, beam_bvh, plane_bvh, r, tp.paths);
+        primary_unshifted = std::make_unique<BeamGather>(scene, beam_settings, beam_bvh, r, tp.paths);
+      } else if (beams) {  // only the light paths' beams are kept, with their parents (photon_tracer.h)
         PhotonTraceParams tb = tp;
         tb.store_photons = false;
         std::vector<MediumBeam> traced;
@@ -95,9 +112,17 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
         else later = std::make_unique<VpmGather>(scene, vpm, bvh, r, tp.paths);
       }
     }
-    const GvpmTracer tracer(scene, m_settings, options.max_depth, media ? &bvh : nullptr,
-                            media ? (beams ? &beam_parents : &parents) : nullptr, r,
-                            media ? int64_t(m_settings.photons) : 0, later.get(), media ? &beam_bvh : nullptr);
+    GvpmLightData data;
+    if (media) {
+      data.photons = &bvh;
+      data.parents = beams ? &beam_parents : &parents;
+      data.beams = &beam_bvh;
+      data.planes = &plane_bvh;
+      data.later = later.get();
+      data.primary_unshifted = primary_unshifted.get();
+      data.light_paths = int64_t(m_settings.photons);
+    }
+    const GvpmTracer tracer(scene, m_settings, options.max_depth, r, data);
     for (auto& s : iter_stats) s = core::Stats{};
     std::vector<char> tile_done(static_cast<size_t>(tiles), 0);
     core::parallel_for(
@@ -109,12 +134,13 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
           for (int y = y0; y < std::min(h, y0 + kTileSize); ++y)
             for (int x = x0; x < std::min(w, x0 + kTileSize); ++x)
               tracer.sample(x, y, rng, scratch[size_t(thread)], buffers[size_t(thread)], counters);
-          counters.flush(iter_stats[size_t(thread)], prefix);
+          counters.flush(iter_stats[size_t(thread)], prefix, names);
           tile_done[size_t(ti)] = 1;
         },
         options.stop);
     bvh.release();
     beam_bvh.release();
+    plane_bvh.release();
     const bool complete = std::find(tile_done.begin(), tile_done.end(), 0) == tile_done.end();
     for (size_t t = 0; t < buffers.size(); ++t) {
       if (complete) {
@@ -150,14 +176,19 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
     result.stats.add(prefix + ".beams_clipped", beam_counters.clipped);
     result.stats.add(prefix + ".beam_nan_dropped", beam_counters.dropped);
   }
+  if (planes) plane_counters.flush(result.stats, prefix);
   result.info["media"] = media;
-  result.info["kernel_dimension"] = 3;
+  result.info["kernel_dimension"] = planes ? 0 : 3;
   result.info["radius_initial"] = r1;
   result.info["radius_final"] = radius;
   result.info["photons_per_iteration"] = m_settings.photons;
-  result.info["gather"] = beams ? "beams (Beam-Beam 3D)" : beam ? "beam (Point-Beam 3D)" : "points";
+  result.info["gather"] = planes  ? "planes (Plane-Beam 0D; beams not from scattering events: Beam-Beam 3D, unshifted)"
+                          : beams ? "beams (Beam-Beam 3D)"
+                          : beam  ? "beam (Point-Beam 3D)"
+                                  : "points";
+  if (planes) result.info["plane_piece_scale"] = m_settings.plane_piece_scale;
   if (!beam && !beams) result.info["distance_samples"] = m_settings.distance_samples;
-  result.info["mixed_shift"] = m_settings.mixed;
+  if (!planes) result.info["mixed_shift"] = m_settings.mixed;
   result.wall_seconds = timer.seconds();
   return result;
 }

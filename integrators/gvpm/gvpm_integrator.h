@@ -22,6 +22,12 @@
 // (uniform on the piece's chord, Beam-Beam 3D) and a gather point uniform on its camera
 // chord, shifted as gbre's (the photon reconnected to its beam's start vertex); the later
 // segments use `beam`'s Beam-Beam 3D gather; counters `gbeam.*`.
+// `--integrator gplane` (G-Plane, Sec. 5.3) is it with GvpmSettings::gather = planes: the
+// light pass of `plane` (planes, and the beams not from scattering events; plane_pass.h);
+// a primary-ray segment's plane hits are shifted by rotating each plane about its light
+// segment (gvpm_plane.cpp, gradients/volume_plane_shift.h) while its beam part goes
+// unshifted to `direct`; the later segments use `plane`'s gather; counters `gplane.*`
+// (with plane's plane_tests, intersections, occluded and the pass's planes_stored, ...).
 #pragma once
 
 #include <memory>
@@ -43,6 +49,11 @@ class GvpmIntegrator final : public Integrator {
   // `gbeam`: the settings read by GvpmSettings::read_gbeam.
   static std::unique_ptr<Integrator> make_gbeam(Settings& settings) {
     GvpmSettings g = GvpmSettings::read_gbeam(settings);
+    return std::make_unique<GvpmIntegrator>(g, settings.to_json());
+  }
+  // `gplane`: the settings read by GvpmSettings::read_gplane.
+  static std::unique_ptr<Integrator> make_gplane(Settings& settings) {
+    GvpmSettings g = GvpmSettings::read_gplane(settings);
     return std::make_unique<GvpmIntegrator>(g, settings.to_json());
   }
   explicit GvpmIntegrator(const GvpmSettings& settings, core::Json json = {}) : m_settings(settings), m_json(std::move(json)) {}

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/plane/plane_settings.h"
 #include "integrators/vpm/vpm_settings.h"
 
 namespace dp::integrators {
@@ -34,15 +35,27 @@ GvpmSettings GvpmSettings::read_gbeam(Settings& s) {
   return g;
 }
 
-void GvpmSettings::read_gradient_keys(Settings& s) {
+GvpmSettings GvpmSettings::read_gplane(Settings& s) {
+  GvpmSettings g;
+  g.gather = GvpmGather::planes;
+  g.distance_samples = 1;
+  const PlaneSettings p = PlaneSettings::read(s);  // plane's keys and defaults
+  static_cast<MediaPhotonSettings&>(g) = p;
+  g.plane_piece_scale = p.piece_scale;
+  g.read_gradient_keys(s, false);
+  return g;
+}
+
+void GvpmSettings::read_gradient_keys(Settings& s, bool photon_shift) {
   GvpmSettings& g = *this;
   g.alpha = float(s.get_double("alpha", double(g.alpha),
                                "screened Poisson weight of the primal image, L1 and L2 (Gruson et al. 2018, Sec. 6.1: 0.2)"));
   g.reconstruction = s.get_string("reconstruction", g.reconstruction,
                                   "reconstruction shown as the RGB layer (both are written as layers)", {"l1", "l2"});
-  g.mixed = s.get_bool("mixed_shift", g.mixed,
-                       "mixed photon shift (Gruson et al. 2018, Eq. 16: photons in both kernels are reused); "
-                       "false: every photon takes the simple shift b + (d' - d) and is reconnected");
+  if (photon_shift)
+    g.mixed = s.get_bool("mixed_shift", g.mixed,
+                         "mixed photon shift (Gruson et al. 2018, Eq. 16: photons in both kernels are reused); "
+                         "false: every photon takes the simple shift b + (d' - d) and is reconnected");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
 }
 

@@ -8,6 +8,9 @@
 // `bre`'s keys (radius_scale 0.10%, no distance_samples) and the same gradient keys.
 // `gbeam` (G-Beam, Sec. 5.2; GvpmGather::beams): `beam`'s keys (photons 20000 light
 // paths, radius_scale 0.10%) and the same gradient keys.
+// `gplane` (G-Plane, Sec. 5.3; GvpmGather::planes): `plane`'s keys (photons 20000 light
+// paths, radius_scale 0.10% for the beam part, plane_piece_scale 1/64) and the gradient
+// keys but mixed_shift (planes have no kernel to mix in).
 #pragma once
 
 #include <string>
@@ -26,6 +29,7 @@ enum class GvpmFault : uint8_t {
   chord_as_diameter,       // gbre: the gather density 1 / (2r) instead of 1 / |chord| (the chord's clipping and
                            // its photon's distance from the ray ignored)
   beam_chord_ignored,      // gbeam: the beam photon not divided by its density 1 / |beam chord|
+  plane_eq18_jacobian,     // gplane: the shift's Jacobian with Eq. 18's printed t-factors (volume_plane_shift.h)
 };
 
 // How the primary ray's segments are gathered: `gvpm`'s gather points (distance samples,
@@ -34,7 +38,11 @@ enum class GvpmFault : uint8_t {
 // `gbeam` (G-Beam, Sec. 5.2): the primary ray's segments against photon beams, Beam-Beam
 // 3D (a photon drawn uniformly on each beam's chord near the segment, then a gather point
 // uniformly on the camera chord around it), shifted as gbre's.
-enum class GvpmGather : uint8_t { points, beam, beams };
+// `gplane` (G-Plane, Sec. 5.3): the primary ray's segments against photon planes (the 0D
+// plane estimate, plane_gather.h), each hit shifted by the rotation of
+// gradients/volume_plane_shift.h; the beams not from scattering events go unshifted to
+// `direct`.
+enum class GvpmGather : uint8_t { points, beam, beams, planes };
 
 struct GvpmSettings : MediaPhotonSettings {
   int distance_samples = 40;          // gather points per camera segment in a medium (as vpm)
@@ -42,18 +50,25 @@ struct GvpmSettings : MediaPhotonSettings {
   std::string reconstruction = "l1";  // which reconstruction is the RGB layer: l1 | l2
   bool mixed = true;                  // mixed photon shift (Eq. 16); false: the simple shift b + (d' - d)
   GvpmGather gather = GvpmGather::points;
+  double plane_piece_scale = 1.0 / 64.0;  // gplane: as plane's `plane_piece_scale` (plane_settings.h)
   GvpmFault fault = GvpmFault::none;  // tests only
   gradients::ReconnectFault reconnect_fault = gradients::ReconnectFault::none;  // tests only
 
   static GvpmSettings read(Settings& s);       // gvpm
   static GvpmSettings read_gbre(Settings& s);  // gbre
   static GvpmSettings read_gbeam(Settings& s); // gbeam
+  static GvpmSettings read_gplane(Settings& s); // gplane
   const char* name() const {
-    return gather == GvpmGather::beam ? "gbre" : gather == GvpmGather::beams ? "gbeam" : "gvpm";
+    switch (gather) {
+      case GvpmGather::beam: return "gbre";
+      case GvpmGather::beams: return "gbeam";
+      case GvpmGather::planes: return "gplane";
+      default: return "gvpm";
+    }
   }
 
  private:
-  void read_gradient_keys(Settings& s);
+  void read_gradient_keys(Settings& s, bool photon_shift = true);  // photon_shift: also mixed_shift
 };
 
 }  // namespace dp::integrators

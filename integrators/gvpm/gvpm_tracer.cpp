@@ -18,8 +18,8 @@ namespace dp::integrators {
 using gradients::ParentKind;
 using gradients::PhotonShiftKind;
 
-void GvpmCounters::flush(core::Stats& stats, const std::string& prefix) const {
-  camera.flush(stats, prefix);
+void GvpmCounters::flush(core::Stats& stats, const std::string& prefix, const GatherCounterNames& names) const {
+  camera.flush(stats, prefix, names);
   stats.add(prefix + ".samples", samples);
   stats.add(prefix + ".nan_dropped", nan_dropped);
   stats.add(prefix + ".direct_paths", direct_paths);
@@ -43,6 +43,9 @@ void GvpmCounters::flush(core::Stats& stats, const std::string& prefix) const {
     if (kind == ParentKind::medium || kind == ParentKind::surface || kind == ParentKind::light) continue;
     stats.add(prefix + ".shift.fail.parent_" + gradients::to_string(kind), fail_parent[size_t(k)]);
   }
+  stats.add(prefix + ".shift.plane_rotations", plane_rotations);
+  stats.add(prefix + ".shift.fail.plane_degenerate", fail_plane_degenerate);
+  stats.add(prefix + ".shift.fail.plane_segment", fail_plane_segment);
   stats.add(prefix + ".pairs.shifted", pairs_shifted);
   stats.add(prefix + ".pairs.fallback", pairs_fallback);
   stats.add(prefix + ".pairs.outside_image", outside_image);
@@ -51,38 +54,44 @@ void GvpmCounters::flush(core::Stats& stats, const std::string& prefix) const {
 namespace {
 
 // vpm's gather for every camera segment except the primary ray's (those have the full
-// path-length budget max_depth - 1 and are gathered and shifted by GvpmTracer).
+// path-length budget max_depth - 1 and are gathered and shifted by GvpmTracer); on the
+// primary ray's segments only `primary` (gplane: the unshifted beam part), if any.
 class LaterSegments final : public MediumGather {
  public:
-  LaterSegments(const MediumGather* inner, int primary_budget) : m_inner(inner), m_primary(primary_budget) {}
+  LaterSegments(const MediumGather* inner, const MediumGather* primary, int primary_budget)
+      : m_inner(inner), m_primary_gather(primary), m_primary(primary_budget) {}
   Rgb gather(const Ray& ray, float seg_len, int medium, int max_photon_depth, core::Rng& rng,
              GatherCounters& counters) const override {
-    if (max_photon_depth == m_primary || !m_inner) return Rgb::Zero();
-    return m_inner->gather(ray, seg_len, medium, max_photon_depth, rng, counters);
+    const MediumGather* g = max_photon_depth == m_primary ? m_primary_gather : m_inner;
+    if (!g) return Rgb::Zero();
+    return g->gather(ray, seg_len, medium, max_photon_depth, rng, counters);
   }
 
  private:
   const MediumGather* m_inner;
+  const MediumGather* m_primary_gather;
   int m_primary;
 };
 
 }  // namespace
 
-GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
-                       const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
-                       const MediumGather* later, const BeamBvh* beams)
+GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, float radius,
+                       const GvpmLightData& data)
     : m_scene(scene),
       m_settings(settings),
       m_max_depth(max_depth),
-      m_photons(photons),
-      m_parents(parents),
+      m_photons(data.photons),
+      m_parents(data.parents),
       m_radius(radius),
       m_beam(settings.gather != GvpmGather::points),
-      m_beams(settings.gather == GvpmGather::beams ? beams : nullptr),
-      m_scale(light_paths > 0 ? uniform_kernel(3, double(radius)) /
-                                    (double(light_paths) * (m_beam ? 1 : settings.distance_samples))
-                              : 0.0),
-      m_later(later),
+      m_beams(settings.gather == GvpmGather::beams ? data.beams : nullptr),
+      m_scale(data.light_paths > 0 ? uniform_kernel(3, double(radius)) /
+                                         (double(data.light_paths) * (m_beam ? 1 : settings.distance_samples))
+                                   : 0.0),
+      m_later(data.later),
+      m_primary_unshifted(data.primary_unshifted),
+      m_planes(settings.gather == GvpmGather::planes ? data.planes : nullptr),
+      m_paths(data.light_paths),
       m_camera(scene, settings.rr_depth, max_depth) {}
 
 void GvpmTracer::primary_segments(const Ray& primary, std::vector<GvpmSegment>& out) const {
@@ -125,9 +134,12 @@ float GvpmTracer::distance_pdf(const scene::HomogeneousMedium& m, float len, flo
 
 void GvpmTracer::gather(const GvpmSegment& seg, int k, core::Rng& rng, GvpmScratch& sc, GvpmCounters& counters) const {
   const int budget = m_max_depth - 1;
-  const bool beams = m_settings.gather == GvpmGather::beams;
-  const bool no_data = beams ? (!m_beams || m_beams->empty()) : (!m_photons || m_photons->empty());
+  const bool beams = m_settings.gather == GvpmGather::beams, planes = m_settings.gather == GvpmGather::planes;
+  const bool no_data = planes  ? (!m_planes || m_planes->empty())
+                       : beams ? (!m_beams || m_beams->empty())
+                               : (!m_photons || m_photons->empty());
   if (budget < 1 || no_data || !(seg.len > 0.0f)) return;
+  if (planes) return gather_planes(seg, k, sc, counters);  // checks the medium itself
   const scene::HomogeneousMedium& med = m_scene.media()[size_t(seg.medium)];
   if (is_black(med.sigma_s)) {  // nothing scatters toward the camera here
     ++counters.empty_segments;
@@ -271,8 +283,9 @@ void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradien
   sc.terms.clear();
   sc.points.clear();
   sc.beam_photons.clear();
+  sc.plane_terms.clear();
   // The unshifted part: vpm's camera path without the primary ray's gathers.
-  const LaterSegments later(m_later, m_max_depth - 1);
+  const LaterSegments later(m_later, m_primary_unshifted, m_max_depth - 1);
   const Rgb direct = m_camera.radiance(primary, m_later ? &later : nullptr, rng, counters.camera);
   if (!is_black(direct) || !is_finite(direct)) {
     sc.splats.add(px, py, 1, direct.cast<double>());
@@ -284,7 +297,7 @@ void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradien
       ++counters.primary_segments;
       gather(sc.base[k], int(k), rng, sc, counters);
     }
-    if (!sc.terms.empty())
+    if (!sc.terms.empty() || !sc.plane_terms.empty())
       for (int nb = 0; nb < 4; ++nb) offsets(nb, px, py, raster, sc, buf.width(), buf.height(), counters);
   }
   if (!sc.splats.flush(buf, px, py)) ++counters.nan_dropped;  // the whole sample is dropped, never splatted
@@ -294,12 +307,14 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
                          GvpmCounters& counters) const {
   const int qx = px + kPairDx[nb], qy = py + kPairDy[nb];
   if (qx < 0 || qy < 0 || qx >= w || qy >= h) {  // no pair: the base pixel keeps its own estimate
-    counters.outside_image += int64_t(sc.terms.size());
+    counters.outside_image += int64_t(sc.terms.size() + sc.plane_terms.size());
     for (const GvpmTerm& t : sc.terms) sc.splats.unpaired(px, py, t.value.cast<double>(), 1.0);
+    for (const GvpmPlaneTerm& t : sc.plane_terms) sc.splats.unpaired(px, py, t.value.cast<double>(), 1.0);
     return;
   }
   // Sec. 4.1: the primary ray through the same sub-pixel position of pixel j.
   primary_segments(m_scene.camera().generate_ray(raster + Vec2(float(kPairDx[nb]), float(kPairDy[nb]))), sc.offset);
+  if (m_planes) return plane_offsets(nb, px, py, sc, counters);
   const bool truncated = m_settings.fault != GvpmFault::untruncated_offset_pdf;
   const bool weight_one = m_settings.fault == GvpmFault::mis_weight_one;
   for (const GvpmGatherPoint& gp : sc.points) {

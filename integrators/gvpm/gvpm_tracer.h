@@ -49,6 +49,7 @@
 #include "integrators/media_photons/media_camera.h"
 #include "integrators/media_photons/photon_bvh.h"
 #include "integrators/pair_splats.h"
+#include "integrators/plane/plane_gather.h"
 #include "scene/media/phase_function.h"
 
 namespace dp::integrators {
@@ -60,8 +61,10 @@ struct GvpmCounters {
   int64_t shifts = 0, shift_null = 0, shift_simple = 0, shift_reflected = 0, reconnections = 0;
   int64_t fail_segment_missing = 0, fail_medium = 0, fail_distance = 0, fail_occluded = 0, fail_zero = 0;
   std::array<int64_t, gradients::kParentKindCount> fail_parent{};
+  int64_t plane_rotations = 0, fail_plane_degenerate = 0, fail_plane_segment = 0;  // gplane (volume_plane_shift.h)
   int64_t pairs_shifted = 0, pairs_fallback = 0, outside_image = 0;
-  void flush(core::Stats& stats, const std::string& prefix) const;  // prefix "gvpm" | "gbre"
+  // prefix: the integrator's name; `names`: how camera.gather is named (gplane: planes).
+  void flush(core::Stats& stats, const std::string& prefix, const GatherCounterNames& names = {}) const;
 };
 
 struct GvpmSegment {
@@ -83,23 +86,40 @@ struct GvpmTerm {
   Rgb value = Rgb::Zero();  // base f(x)/p(x)
 };
 
+// gplane: one visible hit of a primary segment with a photon plane.
+struct GvpmPlaneTerm {
+  int segment = 0;
+  const MediumPlane* plane = nullptr;
+  PlaneHit hit;
+  Rgb value = Rgb::Zero();  // base f(x)/p(x)
+};
+
 struct GvpmScratch {
   std::vector<GvpmSegment> base, offset;
   std::vector<GvpmGatherPoint> points;
   std::vector<GvpmTerm> terms;
+  std::vector<GvpmPlaneTerm> plane_terms;  // gplane
   std::deque<MediumPhoton> beam_photons;  // gbeam: the photons drawn on beams (stable addresses)
   PairSplats splats;
 };
 
+// What one iteration's light pass leaves for the camera samples (all null without media).
+struct GvpmLightData {
+  const PhotonBvh* photons = nullptr;                             // gvpm, gbre
+  const std::vector<gradients::PhotonParent>* parents = nullptr;  // per photon; gbeam: per beam (beam.index)
+  const BeamBvh* beams = nullptr;                                 // gbeam
+  const PlaneBvh* planes = nullptr;                               // gplane
+  const MediumGather* later = nullptr;  // the gathers of the segments after the first surface
+  // gplane: the primary segments' unshifted part (the beams not from scattering events,
+  // plane_gather.h's (B)), added to `direct`.
+  const MediumGather* primary_unshifted = nullptr;
+  int64_t light_paths = 0;
+};
+
 class GvpmTracer {
  public:
-  // `photons`/`parents` may be empty (no media); `later`: the gather of the segments after
-  // the first surface (vpm's), null without media.
-  // gbeam: `beams` holds the photon beams and `parents` their parent records
-  // ((*parents)[beam.index]); `photons` is unused.
-  GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, const PhotonBvh* photons,
-             const std::vector<gradients::PhotonParent>* parents, float radius, int64_t light_paths,
-             const MediumGather* later, const BeamBvh* beams = nullptr);
+  GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, int max_depth, float radius,
+             const GvpmLightData& data);
   void sample(int px, int py, core::Rng& rng, GvpmScratch& scratch, gradients::GradientBuffers& buf,
               GvpmCounters& counters) const;
 
@@ -119,6 +139,10 @@ class GvpmTracer {
                   const scene::HenyeyGreenstein& phase, const MediumPhoton& ph, float lo, float hi, core::Rng& rng,
                   GvpmScratch& sc, GvpmCounters& counters) const;
   void offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch& sc, int w, int h, GvpmCounters& counters) const;
+  // gplane (gvpm_plane.cpp): the primary segment's plane hits, and their shifts to
+  // neighbour nb (sc.offset already traced).
+  void gather_planes(const GvpmSegment& seg, int k, GvpmScratch& sc, GvpmCounters& counters) const;
+  void plane_offsets(int nb, int px, int py, GvpmScratch& sc, GvpmCounters& counters) const;
 
   const scene::Scene& m_scene;
   const GvpmSettings& m_settings;
@@ -130,6 +154,9 @@ class GvpmTracer {
   const BeamBvh* m_beams;  // gbeam's photon beams (null otherwise)
   double m_scale;  // K3(r) / (N M), M = 1 for gbre
   const MediumGather* m_later;
+  const MediumGather* m_primary_unshifted;
+  const PlaneBvh* m_planes;  // gplane's photon planes (null otherwise)
+  int64_t m_paths;
   MediaCameraTracer m_camera;
 };
 

@@ -53,6 +53,54 @@ bool plane_intersect(const Vec3& a0, const Vec3& w0, const Vec3& w1, const Vec3&
 Rgb plane_estimate(const scene::HomogeneousMedium& med, const MediumPlane& pl, const PlaneHit& h, const Vec3& d,
                    PlaneFault fault = PlaneFault::none);
 
+// v in the piece's half-open range [lo, hi) (closed at the plane's end): each point of a
+// plane belongs to exactly one piece.
+inline bool in_plane_piece(double v, float lo, float hi, float end) {
+  return v >= double(lo) && (v < double(hi) || (!(hi < end) && v <= double(hi)));
+}
+
+// Every visible plane hit of the camera segment (ray.o + w ray.d, w in [0, seg_len], inside
+// medium `medium`, planes of depth <= max_photon_depth): fn(plane, hit, value) with value
+// plane_estimate's (before 1 / N). Counts plane_tests, parallel, intersections, occluded,
+// depth_skipped and photons (the hits passed to fn) in `counters`.
+template <class Fn>
+void for_each_plane_hit(const scene::Scene& scene, const PlaneBvh& planes, const Ray& ray, float seg_len, int medium,
+                        int max_photon_depth, PlaneFault fault, GatherCounters& counters, Fn&& fn) {
+  // A plane's points have depth >= 2 (a segment, then its scattering event's direction).
+  if (max_photon_depth < 2 || planes.empty() || !(seg_len > 0.0f)) return;
+  const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
+  if (is_black(med.sigma_s)) return;
+  const float s = planes.clip(ray.o, ray.d, seg_len);
+  if (!(s > 0.0f)) return;
+  planes.query_segment(ray.o, ray.d, s, [&](const MediumPlane& pl, const PlaneBvh::Piece& pc) {
+    if (pl.medium != medium) return;
+    if (pl.depth > max_photon_depth) {
+      ++counters.depth_skipped;
+      return;
+    }
+    ++counters.plane_tests;
+    PlaneHit h;
+    if (!plane_intersect(pl.a0, pl.w0, pl.w1, ray.o, ray.d, h)) {
+      ++counters.parallel;
+      return;
+    }
+    if (!in_plane_piece(h.t0, pc.u0, pc.u1, pl.t0_end) || !in_plane_piece(h.t1, pc.v0, pc.v1, pl.t1_end) ||
+        !(h.w >= 0.0) || !(h.w <= double(s)))
+      return;
+    ++counters.intersections;
+    const Vec3 a1 = (pl.a0.cast<double>() + h.t0 * pl.w0.cast<double>()).cast<float>();
+    const Vec3 b = (ray.o.cast<double>() + h.w * ray.d.cast<double>()).cast<float>();
+    if (fault != PlaneFault::no_occlusion && scene.occluded(a1, b)) {
+      ++counters.occluded;
+      return;
+    }
+    const Rgb v = plane_estimate(med, pl, h, ray.d, fault);
+    if (is_black(v)) return;
+    ++counters.photons;
+    fn(pl, h, v);
+  });
+}
+
 class PlaneGather final : public MediumGather {
  public:
   // `beams`: the beams not starting at a scattering event (or all with the planted

@@ -36,6 +36,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "core/rng.h"
 #include "integrators/beam/beam_integrator.h"
@@ -43,6 +44,7 @@
 #include "integrators/gvpm/gvpm_integrator.h"
 #include "integrators/integrator.h"
 #include "integrators/media_photons/photon_tracer.h"
+#include "integrators/plane/plane_integrator.h"
 #include "integrators/vpm/vpm_integrator.h"
 #include "tests/integrators/media_furnace_support.h"
 #include "tests/support/test_scenes.h"
@@ -61,7 +63,9 @@ struct Config {
   int distance_samples = 4;
   integrators::GvpmGather gather = integrators::GvpmGather::points;  // gvpm | gbre | gbeam
   std::string prefix() const {
-    return gather == integrators::GvpmGather::beam ? "gbre" : gather == integrators::GvpmGather::beams ? "gbeam" : "gvpm";
+    integrators::GvpmSettings g;
+    g.gather = gather;
+    return g.name();
   }
 };
 
@@ -98,11 +102,19 @@ namespace {
 GvpmFault density_fault(integrators::GvpmGather gather) {
   if (gather == integrators::GvpmGather::beam) return GvpmFault::chord_as_diameter;
   if (gather == integrators::GvpmGather::beams) return GvpmFault::beam_chord_ignored;
+  if (gather == integrators::GvpmGather::planes) return GvpmFault::plane_eq18_jacobian;
   return GvpmFault::untruncated_offset_pdf;
+}
+
+// gbeam and gplane run a tenth of the light paths (each gives several beams or planes,
+// each meeting many queries: ~10x gbre's terms per query at equal paths).
+bool few_paths(integrators::GvpmGather gather) {
+  return gather == integrators::GvpmGather::beams || gather == integrators::GvpmGather::planes;
 }
 
 void furnace_test(integrators::GvpmGather gather) {
   const bool beam = gather == integrators::GvpmGather::beam, beams = gather == integrators::GvpmGather::beams;
+  const bool planes = gather == integrators::GvpmGather::planes;
   constexpr int kRes = 24, kIter = 16, kRuns = 10, kDepth = 1000;
   const auto s = test::medium_furnace(furnace_medium(), kEnv, false, kRes);
   const double diag = double(s->bounds().diagonal());
@@ -116,13 +128,15 @@ void furnace_test(integrators::GvpmGather gather) {
       integrators::VpmSettings v;
       integrators::BreSettings b;
       integrators::BeamSettings bm;
-      v.photons = b.photons = bm.photons = photons;
-      v.radius_scale = b.radius_scale = bm.radius_scale = radius_scale;
-      v.radius_alpha = b.radius_alpha = bm.radius_alpha = Config{}.radius_alpha;
+      integrators::PlaneSettings pl;
+      v.photons = b.photons = bm.photons = pl.photons = photons;
+      v.radius_scale = b.radius_scale = bm.radius_scale = pl.radius_scale = radius_scale;
+      v.radius_alpha = b.radius_alpha = bm.radius_alpha = pl.radius_alpha = Config{}.radius_alpha;
       v.distance_samples = Config{}.distance_samples;
       b.kernel_dim = 3;
       const auto opt = test::quiet_options(kIter, 300 + uint64_t(k), kDepth);
-      const auto r = beams  ? integrators::BeamIntegrator(bm).render(*s, opt)
+      const auto r = planes ? integrators::PlaneIntegrator(pl).render(*s, opt)
+                     : beams  ? integrators::BeamIntegrator(bm).render(*s, opt)
                      : beam ? integrators::BreIntegrator(b).render(*s, opt)
                             : integrators::VpmIntegrator(v).render(*s, opt);
       add_run(runs, {test::channel_mean(r.layers[0].image, 0), test::channel_mean(r.layers[0].image, 1),
@@ -130,13 +144,11 @@ void furnace_test(integrators::GvpmGather gather) {
     }
     return runs;
   };
-  // gbeam: a tenth of the light paths (each gives several beams, each beam a photon per
-  // query it reaches: ~10x gbre's terms per query at equal paths).
-  const int photons = beams ? Config{}.photons / 10 : Config{}.photons;
+  const int photons = few_paths(gather) ? Config{}.photons / 10 : Config{}.photons;
   const Runs vpm_default = vpm_runs(Config{}.radius_scale, photons);
   auto check = [&](Config c, bool expect_pass) {
     c.gather = gather;
-    if (beams) c.photons /= 10;
+    if (few_paths(gather)) c.photons /= 10;
     const std::string p = c.prefix();
     const double shell = shell_length(*s, c.radius_scale * diag);
     Runs runs, primal;
@@ -145,7 +157,7 @@ void furnace_test(integrators::GvpmGather gather) {
       const auto r = render(*s, c, kIter, 100 + uint64_t(k), kDepth);
       CHECK(r.stats.get(p + ".nan_dropped") == 0);
       shifted += r.stats.get(p + ".pairs.shifted");
-      reconnections += r.stats.get(p + ".shift.reconnections");
+      reconnections += r.stats.get(p + (planes ? ".shift.plane_rotations" : ".shift.reconnections"));
       nulls += r.stats.get(p + ".shift.null");
       reflected += r.stats.get(p + ".shift.reflected");
       std::vector<double> v;
@@ -172,7 +184,7 @@ void furnace_test(integrators::GvpmGather gather) {
         test::sidak_welch(primal, c.radius_scale == Config{}.radius_scale ? vpm_default : vpm_runs(c.radius_scale, c.photons), 0.01);
     std::printf("[%s furnace] fault %d: primal vs %s worst |t|/crit %.2f; pairs shifted %lld, reconnections %lld, null "
                 "shifts %lld, reflected %lld; worst excess/(se z) %.2f (z %.2f)\n",
-                p.c_str(), int(c.fault), beams ? "beam" : beam ? "bre 3d" : "vpm", vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
+                p.c_str(), int(c.fault), planes ? "plane" : beams ? "beam" : beam ? "bre 3d" : "vpm", vs_vpm, (long long)shifted, (long long)reconnections, (long long)nulls,
                 (long long)reflected, worst, z);
     worst = std::max(worst, vs_vpm);
     CHECK(shifted > 0);
@@ -182,12 +194,18 @@ void furnace_test(integrators::GvpmGather gather) {
     else CHECK(worst > 1.0);
   };
   check(Config{}, true);
-  // Kernels wider than a pixel's offset: null and reflected (mixed) shifts occur.
-  Config wide;
-  wide.radius_scale = 0.04;
-  wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
-  check(wide, true);
-  for (auto f : {density_fault(gather), GvpmFault::mis_weight_one}) {
+  if (!planes) {  // Kernels wider than a pixel's offset: null and reflected (mixed) shifts occur.
+    Config wide;
+    wide.radius_scale = 0.04;
+    wide.photons = 5000;  // 16x the photons per query of the default config at a quarter of the paths
+    check(wide, true);
+  }
+  // gplane: Eq. 18's Jacobian changes each pair by ~1% here (neighbouring rays, t' ~ t):
+  // not rejected at this budget (measured 0.77); the unit test rejects it
+  // (test_volume_plane_shift.cpp), and the media box at 32x32 ([.] case below).
+  std::vector<GvpmFault> faults = {GvpmFault::mis_weight_one};
+  if (!planes) faults.push_back(density_fault(gather));
+  for (auto f : faults) {
     Config c;
     c.fault = f;
     check(c, false);
@@ -202,6 +220,11 @@ TEST_CASE("gvpm: the volumetric furnace: reconstruction within vpm's bias bound,
 
 TEST_CASE("gbeam: the volumetric furnace: reconstruction within beam's bias bound, gradients summing to 0", "[stat]") {
   furnace_test(integrators::GvpmGather::beams);
+}
+
+TEST_CASE("gplane: the volumetric furnace: reconstruction within the beam part's bias bound, gradients summing to 0",
+          "[stat]") {
+  furnace_test(integrators::GvpmGather::planes);
 }
 
 TEST_CASE("gbre: the volumetric furnace: reconstruction within bre 3d's bias bound, gradients summing to 0", "[stat]") {
@@ -243,8 +266,10 @@ std::vector<double> gradient_blocks(const core::Image& img, const core::Image* d
   return out;
 }
 
+// One reference per resolution (the scenes differ only in it).
 const Runs& volpath_reference(const scene::Scene& s) {
-  static Runs ref;
+  static std::map<int, Runs> refs;
+  Runs& ref = refs[s.camera().width()];
   if (!ref.empty()) return ref;
   for (int k = 0; k < kBoxRuns; ++k) {
     integrators::Settings settings;
@@ -255,8 +280,12 @@ const Runs& volpath_reference(const scene::Scene& s) {
   return ref;
 }
 
-void media_box_test(integrators::GvpmGather gather) {
-  const auto s = test::media_box(true, kBoxRes);
+// The planted defects: `defects` (default: MIS weight 1, the mode's density defect and,
+// for modes that reconnect, the reconnection without 1/t^2).
+enum class Defects { all, mis_only, density_only };
+
+void media_box_test(integrators::GvpmGather gather, int res = kBoxRes, Defects defects = Defects::all) {
+  const auto s = test::media_box(true, res);
   const Runs& ref = volpath_reference(*s);
   auto runs_of = [&](const Config& c) {
     Runs runs;
@@ -273,7 +302,7 @@ void media_box_test(integrators::GvpmGather gather) {
     return runs;
   };
   Config c;
-  c.photons = gather == integrators::GvpmGather::beams ? 1000 : 5000;  // gbeam: see furnace_test
+  c.photons = few_paths(gather) ? 1000 : 5000;  // see few_paths
   c.radius_scale = 0.01;
   c.radius_alpha = 1.0;
   c.gather = gather;
@@ -288,7 +317,10 @@ void media_box_test(integrators::GvpmGather gather) {
   // Planted defects, each rejected by the image mean or the blocks.
   // gbeam: the reconnection (shared with gvpm and gbre, which reject its defect 2) is
   // not re-tested: at gbeam's photon count its block statistic is not powerful enough.
-  for (int d = 0; d < (gather == integrators::GvpmGather::beams ? 2 : 3); ++d) {
+  // gplane: no reconnection to test.
+  const bool reconnects = gather != integrators::GvpmGather::beams && gather != integrators::GvpmGather::planes;
+  for (int d = 0; d < (reconnects ? 3 : 2); ++d) {
+    if ((defects == Defects::mis_only && d != 0) || (defects == Defects::density_only && d != 1)) continue;
     Config bad = c;
     if (d == 0) bad.fault = GvpmFault::mis_weight_one;
     if (d == 1) bad.fault = density_fault(c.gather);
@@ -307,6 +339,18 @@ void media_box_test(integrators::GvpmGather gather) {
 
 TEST_CASE("gbeam: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
   media_box_test(integrators::GvpmGather::beams);
+}
+
+// gplane at 16x16 (a quarter of the 32x32 cost: each plane meets ~700 primary segments at
+// 1000 paths) with MIS weight 1 as its planted defect. Eq. 18's Jacobian is rejected at
+// 32x32 by the hidden case below (6.5 min; measured: correct mean 0.35 / blocks 0.71,
+// Eq. 18 blocks 1.63, MIS weight 1 mean 5.48); at 16x16 it measured 1.00, no power.
+TEST_CASE("gplane: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
+  media_box_test(integrators::GvpmGather::planes, 16, Defects::mis_only);
+}
+
+TEST_CASE("gplane: the media box at 32x32 rejects Eq. 18's printed Jacobian", "[.][stat]") {
+  media_box_test(integrators::GvpmGather::planes, kBoxRes, Defects::density_only);
 }
 
 TEST_CASE("gvpm: L2 reconstruction and dx/dy blocks agree with volpath on a box with media", "[stat]") {
