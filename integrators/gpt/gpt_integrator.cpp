@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "core/error.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "gradients/gradient_buffers.h"
@@ -21,6 +22,9 @@ RenderResult GptIntegrator::render(const scene::Scene& scene, const RenderOption
   // Scenes with media get the media-aware tracer; without media GptTracer runs unchanged
   // (bit-identical images; its gpt.media_skipped counts the samples).
   const bool media = scene.caps().has_media;
+  if (media && m_settings.shift != "reconnection")
+    throw ValueError("setting 'shift=" + m_settings.shift + "' of gpt does not render participating media; the "
+                     "media tracer shifts by distance copy and reconnection (shift=reconnection)", "--set");
   std::optional<GptTracer> tracer;
   std::optional<GptMediaTracer> media_tracer;
   if (media) media_tracer.emplace(scene, m_settings, options.max_depth);

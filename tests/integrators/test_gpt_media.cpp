@@ -23,10 +23,12 @@
 //    (MediaShiftFault::offset_edge_without_transmittance; L2 113.6, gradients 2.08);
 //  * skipping: on a scene without media gpt runs GptTracer (gpt.media_skipped counts
 //    every sample, no gpt.media.* counter), with media GptMediaTracer (medium vertices,
-//    distance copies, reconnections at medium vertices and failures by cause counted).
+//    distance copies, reconnections at medium vertices and failures by cause counted);
+//    shift=manifold (no media variant) is refused on a scene with media.
 #include <catch2/catch.hpp>
 #include <cstdio>
 
+#include "core/error.h"
 #include "integrators/gpt/gpt_media_tracer.h"
 #include "tests/integrators/gpt_unbiased_support.h"
 #include "tests/integrators/media_furnace_support.h"
@@ -169,4 +171,11 @@ TEST_CASE("gpt runs the media tracer only on scenes with media", "[unit]") {
   CHECK(r1.stats.get("gpt.media.shift.reconnect_medium") > 0);
   CHECK(r1.stats.get("gpt.media.shift.reconnect_surface") > 0);
   CHECK(r1.stats.get("gpt.media.shift.fail.not_connectable") > 0);  // the glass ball
+
+  // The manifold shift has no media variant: refused in one line, not run as vacuum.
+  integrators::Settings manifold;
+  manifold.set("shift", "manifold");
+  auto gm = integrators::make_integrator("gpt", manifold);
+  CHECK_THROWS_AS(gm->render(*media, quiet_options(1, 1, 5)), ValueError);
+  CHECK_NOTHROW(gm->render(*vacuum, quiet_options(1, 1, 5)));
 }
