@@ -41,6 +41,7 @@ void GptMediaCounters::flush(core::Stats& stats) const {
   stats.add("gpt.media.shift.reconnect_surface", reconnect_surface);
   stats.add("gpt.media.shift.reconnect_escape", reconnect_escape);
   stats.add("gpt.media.shift.nee_reconnect", nee_reconnect);
+  stats.add("gpt.media.shift.nee_fail", nee_fail);
   for (int i = 1; i < kMediaShiftFailCount; ++i)
     stats.add(std::string("gpt.media.shift.fail.") + to_string(MediaShiftFail(i)), fail[size_t(i)]);
 }
@@ -145,7 +146,7 @@ void GptMediaTracer::shift(const MediaPath& base, int dx, int dy, MediaOffset& o
   if (x1.nee.valid) {
     o.nee1 = shift_light(x1, X, x1.nee, o.light1, o.J_light1);
     if (o.nee1) ++c.nee_reconnect;
-    else fail(MediaShiftFail::zero_contribution);
+    else ++c.nee_fail;  // the light sample only (zero distance or Jacobian); x1' stays
   }
   if (n < 3 || !x1.continued) return;
 

@@ -56,7 +56,7 @@ struct GptMediaCounters {
   int64_t shifts = 0, shifts_outside = 0;
   int64_t distance_copies = 0, primary_surfaces = 0;                         // first-vertex shifts that succeeded
   int64_t reconnect_medium = 0, reconnect_surface = 0, reconnect_escape = 0;  // by x2's kind
-  int64_t nee_reconnect = 0;
+  int64_t nee_reconnect = 0, nee_fail = 0;  // NEE at x1' reconnected to the base's light sample / not
   std::array<int64_t, kMediaShiftFailCount> fail{};
   GptMediaWalkCounters walk;
   void flush(core::Stats& stats) const;
