@@ -1,4 +1,6 @@
-// `--integrator gpt`: gradient-domain path tracing (Kettunen et al. 2015) over tiles.
+// `--integrator gpt`: gradient-domain path tracing (Kettunen et al. 2015) over tiles; in
+// scenes with homogeneous media the shift copies medium distances and reconnects at medium
+// vertices (gpt_media_tracer.h; Gruson et al. 2018, Sec. 6).
 // Renders whole passes (every pixel the same sample count, which the symmetric pair
 // estimates need); a time budget runs 1-spp passes until it is used up. Output layers:
 // "" (RGB: the reconstruction chosen by `reconstruction`, default L1), recon_l1, recon_l2,
@@ -19,6 +21,8 @@ class GptIntegrator final : public Integrator {
   std::string name() const override { return "gpt"; }
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
+  // Homogeneous media through GptMediaTracer (gpt_media_tracer.h); grid media are refused.
+  bool renders_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

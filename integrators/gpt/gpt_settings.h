@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gradients/shift.h"
+#include "gradients/volume_path_shift.h"
 #include "integrators/settings.h"
 
 namespace dp::integrators {
@@ -19,12 +20,18 @@ enum class MisFault : uint8_t {
   without_offset,
 };
 
+// A deliberate defect of the shift in media (GptMediaTracer): the offset's reconnected
+// edge x1' -> x2 without its transmittance tau (Gruson et al. 2018, Eq. 2).
+enum class MediaShiftFault : uint8_t { none, offset_edge_without_transmittance };
+
 // Deliberate defects that the tests' statistical checks must reject (test_gpt_unbiased.cpp,
 // test_gpt_glossy.cpp). C++ only: GptSettings::read never sets them, no scene key or --set
 // reaches them, and the default (none) leaves every image bit-identical.
 struct GptFaults {
   gradients::JacobianFault jacobian = gradients::JacobianFault::none;  // carried into the shift
   MisFault mis = MisFault::none;
+  gradients::VolumeShiftFault volume = gradients::VolumeShiftFault::none;  // media: reconnection factor
+  MediaShiftFault media = MediaShiftFault::none;                          // media: edge transmittance
 };
 
 struct GptSettings {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
-#include "gradients/mis.h"
 #include "gradients/pair_terms.h"
 #include "gradients/shift_factory.h"
+#include "integrators/gpt/gpt_splat.h"
 
 namespace dp::integrators {
 
@@ -17,6 +17,7 @@ using pathspace::Vertex;
 void GptCounters::flush(core::Stats& stats) const {
   stats.add("gpt.samples", samples);
   stats.add("gpt.nan_dropped", nan_dropped);
+  stats.add("gpt.media_skipped", media_skipped);
   stats.add("gpt.shift.attempted", shifts);
   stats.add("gpt.shift.complete", shifts_full);
   stats.add("gpt.shift.outside_image", shifts_outside);
@@ -77,23 +78,13 @@ void GptTracer::count(const Path& base, const ShiftResult& r, GptCounters& c) co
   }
 }
 
-namespace {
-// The symmetric power-heuristic weight (gradients/mis.h), or the MisFault defect of a
-// tests' negative control (one predictable branch).
-double mis_weight(double other_base, double offset_same, double offset_other, MisFault fault) {
-  if (fault == MisFault::without_offset) [[unlikely]]
-    return gradients::symmetric_power_weight(other_base, 0.0, 0.0);
-  return gradients::symmetric_power_weight(other_base, offset_same, offset_other);
-}
-
-}  // namespace
-
 void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradients::GradientBuffers& buf,
                        GptCounters& counters) const {
   thread_local Path base;
   thread_local ShiftResult res;
   thread_local gradients::PairTerms pairs;
   ++counters.samples;
+  ++counters.media_skipped;  // this tracer has no medium code (scenes without media)
   m_builder.build(px, py, stream, base);
   const int n = base.size();
   const int w = buf.width(), h = buf.height();
@@ -103,42 +94,18 @@ void GptTracer::sample(int px, int py, pathspace::SampleStream& stream, gradient
     else ++counters.nan_dropped;
   }
   pairs.set_base(m_scene, m_settings.nee, base);
-  static constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
   for (int nb = 0; nb < 4; ++nb) {
-    const int qx = px + kDx[nb], qy = py + kDy[nb];
+    const int qx = px + kGptDx[nb], qy = py + kGptDy[nb];
     const bool inside = qx >= 0 && qy >= 0 && qx < w && qy < h;
     if (inside) {
-      m_shift->shift(base, Vec2(float(kDx[nb]), float(kDy[nb])), res);
+      m_shift->shift(base, Vec2(float(kGptDx[nb]), float(kGptDy[nb])), res);
       count(base, res, counters);
     } else {
       ++counters.shifts_outside;
     }
-    Rgbd primal_i = Rgbd::Zero(), primal_j = Rgbd::Zero(), grad = Rgbd::Zero();
-    // Every concrete path (NEE or BSDF, >= 2 segments) of the pair, weighted by the
-    // symmetric MIS weight: both pixels' primal estimates and the pair's gradient
-    // f_j(Tx)|T'| - f_i(x) (a failed shift leaves only the base term).
-    for (const gradients::PairTerm& t : pairs.terms(inside ? &res : nullptr, 2)) {
-      const double wgt = mis_weight(t.b_other, t.c, t.d, m_settings.faults.mis);
-      primal_i += wgt * t.fb;
-      if (t.has_offset) {
-        primal_j += wgt * t.fo;
-        grad += wgt * (t.fo - t.fb);
-      } else if (inside) {
-        grad -= wgt * t.fb;
-      }
-    }
-    if (!primal_i.isFinite().all() || !primal_j.isFinite().all() || !grad.isFinite().all()) {
+    // Every concrete path (NEE or BSDF, >= 2 segments) of the pair (gpt_splat.h).
+    if (!splat_gpt_pair(pairs.terms(inside ? &res : nullptr, 2), px, py, nb, inside, m_settings.faults.mis, buf))
       ++counters.nan_dropped;  // counted and dropped, never splatted
-      continue;
-    }
-    buf.add_primal(px, py, 0.25 * primal_i);
-    if (!inside) continue;
-    buf.add_primal(qx, qy, 0.25 * primal_j);
-    // grad estimates I_j - I_i; the buffers hold forward differences.
-    if (kDx[nb] == 1) buf.add_dx(px, py, grad);
-    else if (kDx[nb] == -1) buf.add_dx(qx, qy, -grad);
-    else if (kDy[nb] == 1) buf.add_dy(px, py, grad);
-    else buf.add_dy(qx, qy, -grad);
   }
   buf.add_samples(px, py, 1);
 }

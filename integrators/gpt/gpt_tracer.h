@@ -26,6 +26,7 @@ namespace dp::integrators {
 // Hot-loop counters in plain integers, flushed into core::Stats once per tile.
 struct GptCounters {
   int64_t samples = 0, nan_dropped = 0;
+  int64_t media_skipped = 0;  // samples traced without any medium code (GptTracer: scenes without media)
   int64_t shifts = 0, shifts_full = 0, shifts_outside = 0;
   std::array<int64_t, gradients::kShiftStatusCount> fail{};      // walk failures by cause
   std::array<int64_t, gradients::kStepKindCount> attempted{}, succeeded{};  // per strategy

@@ -40,5 +40,5 @@ TEST_CASE("integrators without media support refuse a scene with media", "[unit]
     }
   }
   CHECK(capable == std::set<std::string>{"path", "volpath", "bdpt", "vpm", "bre", "beam", "plane", "gvpm", "gbre",
-                                          "gbeam", "gplane"});
+                                          "gbeam", "gplane", "gpt"});
 }
