@@ -92,6 +92,48 @@ bool photon_edge(const PhotonParent& parent, const scene::HomogeneousMedium& med
   return pdf > 0.0f && !is_black(f);
 }
 
+bool anchor_direction(const scene::Scene& scene, const PhotonParent& parent, const Vec3& w, Rgb& rho, float& p_dir) {
+  if (parent.kind != ParentKind::medium) return parent_direction(parent, w, rho, p_dir);
+  const scene::HenyeyGreenstein hg(scene.media()[size_t(parent.medium)].phase);
+  rho = Rgb::Constant(hg.eval(parent.w, w));
+  p_dir = hg.pdf(parent.w, w);
+  return p_dir > 0.0f;
+}
+
+SegmentMedia walk_segment(const scene::Scene& scene, const Vec3& o, const Vec3& w, float t, int medium) {
+  SegmentMedia s;
+  s.medium = medium;
+  float start = 0.0f;  // distance from o of the current sub-segment's start
+  Ray ray;
+  ray.o = o;
+  ray.d = w;
+  ray.tmin = scene::Scene::epsilon_at(o);
+  ray.tmax = t;
+  scene::SurfaceHit hit;
+  const int cam_medium = scene.camera_medium();
+  for (int crossings = 0;; ++crossings) {
+    if (!scene.intersect(ray, hit)) break;
+    if (!scene::is_index_matched(hit) || crossings >= 16) {
+      s.blocked = true;
+      return s;
+    }
+    const float at = start + hit.t;  // distance of the boundary from o
+    if (s.medium >= 0) {
+      const scene::HomogeneousMedium& m = scene.media()[size_t(s.medium)];
+      s.tr *= scene::transmittance(m, at - start);
+      s.p_pass *= double(scene::free_flight_pass_probability(m, at - start));
+    }
+    s.medium = scene::medium_toward(hit, w, s.medium, cam_medium);
+    start = at;
+    ray.o = hit.p;
+    ray.tmin = scene::Scene::epsilon_at(hit.p);
+    ray.tmax = t - at;
+    if (!(ray.tmax > ray.tmin)) break;
+  }
+  s.last = t - start;
+  return s;
+}
+
 namespace {
 
 // f(a -> x) and p(x | a) through index-matched boundaries (reconnect_photon_edge).
@@ -106,54 +148,16 @@ bool walked_edge(const scene::Scene& scene, const PhotonParent& parent, int phot
   const Vec3 w = d / t;
   Rgb rho;
   float p_dir = 0.0f;
-  if (parent.kind == ParentKind::medium) {
-    const scene::HenyeyGreenstein hg(scene.media()[size_t(parent.medium)].phase);
-    rho = Rgb::Constant(hg.eval(parent.w, w));
-    p_dir = hg.pdf(parent.w, w);
-    if (!(p_dir > 0.0f)) return false;
-  } else if (!parent_direction(parent, w, rho, p_dir)) {
-    return false;
-  }
-  // Walk a -> x: media switch at index-matched boundaries, any other surface blocks.
-  Rgb tr = Rgb::Ones();
-  double p_pass = 1.0;
-  int medium = parent.medium;
-  float start = 0.0f;  // distance from a of the current segment's start
-  Ray ray;
-  ray.o = parent.a;
-  ray.d = w;
-  ray.tmin = scene::Scene::epsilon_at(parent.a);
-  ray.tmax = t;
-  scene::SurfaceHit hit;
-  const int cam_medium = scene.camera_medium();
-  for (int crossings = 0;; ++crossings) {
-    if (!scene.intersect(ray, hit)) break;
-    if (!scene::is_index_matched(hit) || crossings >= 16) {
-      blocked = true;
-      return false;
-    }
-    const float at = start + hit.t;  // distance of the boundary from a
-    if (medium >= 0) {
-      const scene::HomogeneousMedium& m = scene.media()[size_t(medium)];
-      tr *= scene::transmittance(m, at - start);
-      p_pass *= double(scene::free_flight_pass_probability(m, at - start));
-    }
-    medium = scene::medium_toward(hit, w, medium, cam_medium);
-    start = at;
-    ray.o = hit.p;
-    ray.tmin = scene::Scene::epsilon_at(hit.p);
-    ray.tmax = t - at;
-    if (!(ray.tmax > ray.tmin)) break;
-  }
-  if (medium != photon_medium || medium < 0) {
+  if (!anchor_direction(scene, parent, w, rho, p_dir)) return false;
+  const SegmentMedia seg = walk_segment(scene, parent.a, w, t, parent.medium);
+  if (seg.blocked || seg.medium != photon_medium || seg.medium < 0) {
     blocked = true;
     return false;
   }
-  const scene::HomogeneousMedium& m = scene.media()[size_t(medium)];
-  const float last = t - start;
+  const scene::HomogeneousMedium& m = scene.media()[size_t(seg.medium)];
   const float g = fault == ReconnectFault::no_volume_factor ? 1.0f : 1.0f / t2;  // Eq. 4, no cosine at x
-  f = rho * tr * scene::transmittance(m, last) * m.sigma_s * g;
-  pdf = float(double(p_dir) * p_pass * double(scene::free_flight_pdf(m, last)) * double(g));
+  f = rho * seg.tr * scene::transmittance(m, seg.last) * m.sigma_s * g;
+  pdf = float(double(p_dir) * seg.p_pass * double(scene::free_flight_pdf(m, seg.last)) * double(g));
   return pdf > 0.0f && !is_black(f);
 }
 

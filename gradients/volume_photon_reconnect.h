@@ -74,12 +74,35 @@ struct PhotonParent {
   const scene::Emitter* emitter = nullptr;
   int medium = -1;      // the medium the edge leaves a into (-1: vacuum)
   ParentKind kind = ParentKind::none;
+  // kind == specular: the index of the photon's specular chain back to its last
+  // reconnectable vertex in the photon tracer's chain records (volume_photon_chain.h),
+  // -1 if there is none (a Dirac lobe of a BSDF that is not purely specular, an anchor at
+  // infinity, too long a chain).
+  int32_t chain = -1;
 };
 
 // rho(a; w) and its solid-angle sampling density p_dir(a; w) (the header's terms) for a
 // reconnectable parent; false where w is impossible (back side of a surface or an area
 // light).
 bool parent_direction(const PhotonParent& parent, const Vec3& w, Rgb& rho, float& p_dir);
+
+// rho(a; w) and p_dir(a; w) for any reconnectable parent, a medium one included (its
+// phase function in the scene's medium parent.medium).
+bool anchor_direction(const scene::Scene& scene, const PhotonParent& parent, const Vec3& w, Rgb& rho, float& p_dir);
+
+// A straight segment of a light path from `o` (leaving into `medium`) along unit `w` over
+// distance `t`, walked through index-matched boundaries as the photon tracer crosses them:
+// Tr and the free-flight pass probability of every sub-segment but the last; the last
+// sub-segment's medium and length. `blocked`: a surface that is not an index-matched
+// boundary lies before t (or more than 16 boundaries).
+struct SegmentMedia {
+  Rgb tr = Rgb::Ones();
+  double p_pass = 1;
+  int medium = -1;  // of the last sub-segment
+  float last = 0;   // its length
+  bool blocked = false;
+};
+SegmentMedia walk_segment(const scene::Scene& scene, const Vec3& o, const Vec3& w, float t, int medium);
 
 // f(a -> x) and p(x | a) in the volume measure (the header's formulas) for a reconnectable
 // parent in medium `medium`; false (f = 0, p = 0) where the direction a -> x is not

@@ -61,6 +61,11 @@ struct Chain {
   // then an arbitrary point on the incoming ray (used only to re-trace from outside).
   Vec3d start_dir{0, 0, -1};
   std::vector<ChainVertex> v;  // v[0] = x_0, v[1..n-1] specular, v[n] = movable end
+  // The end is a point in a medium, not on a surface (a volume photon; Gruson et al. 2018,
+  // Sec. 4.3): v[n] lies on a virtual plane (v[n].f: its point, normal and tangents, no
+  // curvature; local_geometry.h's make_plane_end) that re-traces intersect analytically
+  // instead of the scene. Occlusion of the last segment is the caller's.
+  bool end_plane = false;
   int n() const { return int(v.size()) - 1; }
   bool valid_shape() const { return v.size() >= 3; }
 };

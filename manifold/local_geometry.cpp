@@ -164,6 +164,19 @@ ChainVertex make_point(const Vec3d& p) {
   return v;
 }
 
+ChainVertex make_plane_end(const Vec3d& p, const Vec3d& normal) {
+  ChainVertex v;
+  v.f.p = p;
+  v.f.ng = v.f.n = normal.normalized();
+  const Vec3d a = std::abs(v.f.n.x()) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
+  v.f.T1 = (a - v.f.n * v.f.n.dot(a)).normalized();
+  v.f.T2 = v.f.n.cross(v.f.T1);
+  v.f.s = v.f.T1;
+  v.f.t = v.f.T2;  // n x s; every derivative stays 0 (a plane)
+  v.has_surface = false;
+  return v;
+}
+
 std::optional<TraceHit> trace(const scene::Scene& scene, const Vec3d& origin, const Vec3d& dir,
                               const Vec3d& ng_origin) {
   Ray ray;

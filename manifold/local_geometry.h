@@ -32,6 +32,9 @@ std::optional<ChainVertex> make_vertex(const scene::Scene& scene, const scene::S
 ChainVertex make_vertex(const scene::SurfacePoint& sp, Interaction type, double eta = 1.0);
 // A pinned start without a surface (point light, pinhole camera).
 ChainVertex make_point(const Vec3d& p);
+// The end of a chain that ends in a medium (Chain::end_plane): the virtual plane through p
+// with unit normal `normal` (flat: no normal derivatives; any orthonormal tangents).
+ChainVertex make_plane_end(const Vec3d& p, const Vec3d& normal);
 
 struct TraceHit {
   int32_t shape = -1, prim = -1;

@@ -79,6 +79,15 @@ WalkStatus retrace(const scene::Scene& scene, const Chain& base, const Vec3d& x1
     if (base.v[0].has_surface) ng_origin = base.v[0].f.ng;
   }
   for (int i = 1; i <= n; ++i) {
+    if (i == n && base.end_plane) {  // the virtual plane of a medium end (chain.h)
+      ChainVertex& e = out.v[size_t(n)];
+      const double dn = dir.dot(e.f.n);
+      if (std::abs(dn) < kGrazingRay) return WalkStatus::grazing;
+      const double t = (e.f.p - origin).dot(e.f.n) / dn;
+      if (!(t > 0.0) || !std::isfinite(t)) return WalkStatus::miss;
+      e.f.p = origin + t * dir;
+      break;
+    }
     const auto hit = trace(scene, origin, dir, ng_origin);
     if (!hit) return WalkStatus::miss;
     ChainVertex& v = out.v[size_t(i)];
@@ -124,7 +133,7 @@ WalkResult walk(const scene::Scene& scene, const Chain& chain, const Vec3d& targ
   bool need_map = true;
   WalkStatus last_failure = WalkStatus::max_iterations;
   while (true) {
-    if (r.distance < settings.tolerance * scale) break;
+    if (r.distance < std::max(settings.tolerance * scale, settings.accept_distance)) break;
     if (r.iterations >= settings.max_iterations) return finish(last_failure);
     if (need_map) {
       st = tangent_map(r.chain, T);

@@ -28,6 +28,10 @@ struct WalkSettings {
   // The input chain already meets its constraints in double (just re-traced, as by
   // walk_exact): skip walk()'s own initial re-trace (one of ~6 per walk).
   bool exact_input = false;
+  // Also converged once |x_n - target| < accept_distance (absolute, world units): the
+  // relaxed acceptance of Gruson et al. 2018, Sec. 6 (the end need only land inside a
+  // density-estimation kernel). 0: off.
+  double accept_distance = 0;
 };
 
 struct WalkResult {
@@ -41,7 +45,7 @@ struct WalkResult {
 // Re-traces `base` from its pinned start through the point x1 (for Pin::direction:
 // along start_dir through x1), reflecting/refracting at every interior vertex about the
 // microfacet normal given by the vertex's target in its new local frame, until the end's
-// surface. `out` receives the new chain (types, etas, targets, shapes kept).
+// surface (or the virtual plane of a Chain::end_plane end). `out` receives the new chain (types, etas, targets, shapes kept).
 WalkStatus retrace(const scene::Scene& scene, const Chain& base, const Vec3d& x1, Chain& out);
 
 // Scatters w_a (unit, pointing from the vertex toward where the light came from) about

@@ -63,6 +63,8 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
   std::vector<gradients::GradientBuffers> buffers(static_cast<size_t>(threads), gradients::GradientBuffers(w, h));
   std::vector<GvpmScratch> scratch(static_cast<size_t>(threads));
   std::vector<gradients::PhotonParent> parents;
+  std::vector<gradients::PhotonChain> chains;  // specular chains, recorded only for the manifold walk
+  std::vector<gradients::PhotonChain>* chains_out = m_settings.manifold ? &chains : nullptr;
   PhotonTraceCounters photon_counters;
   PhotonBvh bvh;
   core::Timer timer;
@@ -94,7 +96,8 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
         tb.store_photons = false;
         std::vector<MediumBeam> traced;
         BeamTraceCounters bc;
-        if (!trace_medium_photons(scene, tb, options.stop, photons, pc, &parents, &traced, &bc, &beam_parents)) {
+        if (!trace_medium_photons(scene, tb, options.stop, photons, pc, &parents, &traced, &bc, &beam_parents,
+                                  nullptr, nullptr, chains_out)) {
           passes.partial = true;
           break;
         }
@@ -103,7 +106,8 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
         beam_bvh.build(std::move(traced), piece);
         later = std::make_unique<BeamGather>(scene, beam_settings, beam_bvh, r, tp.paths);
       } else {
-        if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents)) {
+        if (!trace_medium_photons(scene, tp, options.stop, photons, pc, &parents, nullptr, nullptr, nullptr, nullptr,
+                                  nullptr, chains_out)) {
           passes.partial = true;
           break;
         }
@@ -116,6 +120,7 @@ RenderResult GvpmIntegrator::render(const scene::Scene& scene, const RenderOptio
     if (media) {
       data.photons = &bvh;
       data.parents = beams ? &beam_parents : &parents;
+      data.chains = &chains;
       data.beams = &beam_bvh;
       data.planes = &plane_bvh;
       data.later = later.get();

@@ -57,6 +57,17 @@ void GvpmSettings::read_gradient_keys(Settings& s, bool photon_shift) {
                          "mixed photon shift (Gruson et al. 2018, Eq. 16: photons in both kernels are reused); "
                          "false: every photon takes the simple shift b + (d' - d) and is reconnected");
   if (!(g.alpha > 0.0f) || !std::isfinite(g.alpha)) throw ValueError("setting 'alpha' must be > 0", "--set");
+  if (!photon_shift) return;  // gplane reconnects nothing
+  g.manifold = s.get_bool("manifold", g.manifold,
+                          "reconnect shifted photons behind purely specular surfaces by a manifold walk "
+                          "(Gruson et al. 2018, Sec. 4.3); false: their shifts fail (counted)");
+  g.manifold_iterations = int(s.get_int("manifold_iterations", g.manifold_iterations,
+                                        "manifold walk iterations per shifted photon (Sec. 6: 5)"));
+  g.manifold_relaxed = s.get_bool("manifold_relaxed", g.manifold_relaxed,
+                                  "relaxed walk acceptance (Sec. 6): the walk stops once the photon lies in the "
+                                  "offset kernel (biased, consistent); false: walk to the shifted photon exactly");
+  if (g.manifold_iterations < 1 || g.manifold_iterations > 1000)
+    throw ValueError("setting 'manifold_iterations' must be in [1, 1000]", "--set");
 }
 
 }  // namespace dp::integrators

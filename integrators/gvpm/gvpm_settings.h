@@ -15,7 +15,7 @@
 
 #include <string>
 
-#include "gradients/volume_photon_reconnect.h"
+#include "gradients/volume_photon_chain.h"
 #include "integrators/media_photons/media_photon_settings.h"
 
 namespace dp::integrators {
@@ -51,8 +51,13 @@ struct GvpmSettings : MediaPhotonSettings {
   bool mixed = true;                  // mixed photon shift (Eq. 16); false: the simple shift b + (d' - d)
   GvpmGather gather = GvpmGather::points;
   double plane_piece_scale = 1.0 / 64.0;  // gplane: as plane's `plane_piece_scale` (plane_settings.h)
+  // Photons behind purely specular chains (gradients/volume_photon_chain.h; Sec. 4.3, 6):
+  bool manifold = true;           // reconnect them by a manifold walk (false: the shift fails, counted)
+  int manifold_iterations = 5;    // walk iterations (Sec. 6: 5)
+  bool manifold_relaxed = true;   // Sec. 6's relaxed acceptance: the walk's end need only fall in the offset kernel
   GvpmFault fault = GvpmFault::none;  // tests only
   gradients::ReconnectFault reconnect_fault = gradients::ReconnectFault::none;  // tests only
+  gradients::ChainFault chain_fault = gradients::ChainFault::none;              // tests only
 
   static GvpmSettings read(Settings& s);       // gvpm
   static GvpmSettings read_gbre(Settings& s);  // gbre

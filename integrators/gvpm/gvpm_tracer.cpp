@@ -43,6 +43,9 @@ void GvpmCounters::flush(core::Stats& stats, const std::string& prefix, const Ga
     if (kind == ParentKind::medium || kind == ParentKind::surface || kind == ParentKind::light) continue;
     stats.add(prefix + ".shift.fail.parent_" + gradients::to_string(kind), fail_parent[size_t(k)]);
   }
+  stats.add(prefix + ".shift.chain_reconnections", chain_reconnections);
+  stats.add(prefix + ".shift.fail.chain_occluded", fail_chain_occluded);
+  walks.flush(stats, prefix + ".shift.manifold");
   stats.add(prefix + ".shift.plane_rotations", plane_rotations);
   stats.add(prefix + ".shift.fail.plane_degenerate", fail_plane_degenerate);
   stats.add(prefix + ".shift.fail.plane_segment", fail_plane_segment);
@@ -82,6 +85,7 @@ GvpmTracer::GvpmTracer(const scene::Scene& scene, const GvpmSettings& settings, 
       m_max_depth(max_depth),
       m_photons(data.photons),
       m_parents(data.parents),
+      m_chains(data.chains),
       m_radius(radius),
       m_beam(settings.gather != GvpmGather::points),
       m_beams(settings.gather == GvpmGather::beams ? data.beams : nullptr),
@@ -382,12 +386,32 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
         } else {
           ++(kind == PhotonShiftKind::simple ? counters.shift_simple : counters.shift_reflected);
           const gradients::PhotonParent& parent = (*m_parents)[ph.index];
-          if (parent.kind != ParentKind::medium && parent.kind != ParentKind::surface && parent.kind != ParentKind::light) {
+          const bool walk = parent.kind == ParentKind::specular && parent.chain >= 0 && m_chains && m_settings.manifold;
+          if (!walk && parent.kind != ParentKind::medium && parent.kind != ParentKind::surface &&
+              parent.kind != ParentKind::light) {
             ++counters.fail_parent[size_t(parent.kind)];
           } else {
             bool blocked = false;
-            const gradients::PhotonReconnection rec = gradients::reconnect_photon_edge(
-                m_scene, parent, ph.medium, ph.p, b_off, blocked, m_settings.reconnect_fault);
+            gradients::PhotonReconnection rec;
+            if (walk) {
+              // Sec. 6: the walk may stop once its end lies in the offset kernel (around d').
+              gradients::ChainReconnectSettings cs;
+              cs.max_iterations = m_settings.manifold_iterations;
+              cs.fault = m_settings.chain_fault;
+              if (m_settings.manifold_relaxed) cs.accept_distance = std::max(0.0, double(m_radius) - double((b_off - d_off).norm()));
+              const gradients::ChainReconnection cr = gradients::reconnect_photon_chain(
+                  m_scene, (*m_chains)[size_t(parent.chain)], ph.medium, ph.p, b_off, cs, &counters.walks);
+              rec = cr;
+              if (cr.ok) {
+                b_off = cr.b_offset;
+                ++counters.chain_reconnections;
+              }
+              if (cr.occluded) ++counters.fail_chain_occluded;
+              blocked = cr.walk != manifold::WalkStatus::ok || cr.occluded;
+            } else {
+              rec = gradients::reconnect_photon_edge(m_scene, parent, ph.medium, ph.p, b_off, blocked,
+                                                     m_settings.reconnect_fault);
+            }
             if (!rec.ok) {
               ++(blocked ? counters.fail_occluded : counters.fail_zero);
             } else {

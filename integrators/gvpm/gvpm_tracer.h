@@ -14,8 +14,10 @@
 //      reconnection (Sec. 4.3): a shifted photon is reconnected to its parent
 //        (gradients/volume_photon_reconnect.h, reconnect_photon_edge: medium, smooth-
 //        surface and finite-light parents, the edge walked through index-matched
-//        boundaries, any other surface blocks it; specular parents -- no manifold walk
-//        yet -- and parents at infinity fail, counted);
+//        boundaries, any other surface blocks it), or, behind a purely specular chain,
+//        walked to it (gradients/volume_photon_chain.h: a manifold walk of at most
+//        `manifold_iterations`, Sec. 6's relaxed acceptance inside the offset kernel);
+//        other specular parents and parents at infinity fail, counted;
 //    offset value f(Tx)|T'|/p(x) = beta'_k Tr(t) rho_p(w_b', -w') beta_b ratio K / (N M p(t)),
 //    MIS (Eq. 19, balance heuristic) w = 1 / (1 + R), R = p'(t) / p(t) (Eq. 14 on the
 //    offset segment) x p(b' | a) / p(b | a) (1 for a null shift); a failed shift is the
@@ -62,6 +64,10 @@ struct GvpmCounters {
   int64_t fail_segment_missing = 0, fail_medium = 0, fail_distance = 0, fail_occluded = 0, fail_zero = 0;
   std::array<int64_t, gradients::kParentKindCount> fail_parent{};
   int64_t plane_rotations = 0, fail_plane_degenerate = 0, fail_plane_segment = 0;  // gplane (volume_plane_shift.h)
+  // Photons behind specular chains (volume_photon_chain.h): walks by status, and
+  // reconnections made through a chain.
+  manifold::WalkStats walks;
+  int64_t chain_reconnections = 0, fail_chain_occluded = 0;
   int64_t pairs_shifted = 0, pairs_fallback = 0, outside_image = 0;
   // prefix: the integrator's name; `names`: how camera.gather is named (gplane: planes).
   void flush(core::Stats& stats, const std::string& prefix, const GatherCounterNames& names = {}) const;
@@ -107,6 +113,7 @@ struct GvpmScratch {
 struct GvpmLightData {
   const PhotonBvh* photons = nullptr;                             // gvpm, gbre
   const std::vector<gradients::PhotonParent>* parents = nullptr;  // per photon; gbeam: per beam (beam.index)
+  const std::vector<gradients::PhotonChain>* chains = nullptr;    // the parents' specular chains (PhotonParent::chain)
   const BeamBvh* beams = nullptr;                                 // gbeam
   const PlaneBvh* planes = nullptr;                               // gplane
   const MediumGather* later = nullptr;  // the gathers of the segments after the first surface
@@ -149,6 +156,7 @@ class GvpmTracer {
   int m_max_depth;
   const PhotonBvh* m_photons;
   const std::vector<gradients::PhotonParent>* m_parents;
+  const std::vector<gradients::PhotonChain>* m_chains;
   float m_radius;
   bool m_beam;     // gbre's and gbeam's gather points, uniform on a camera chord
   const BeamBvh* m_beams;  // gbeam's photon beams (null otherwise)

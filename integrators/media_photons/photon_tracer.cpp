@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "core/rng.h"
 #include "core/thread_pool.h"
@@ -101,11 +102,42 @@ void tracer_record_beam(const scene::Scene& scene, const scene::HomogeneousMediu
   ++bc.stored;
 }
 
+// The specular chain of the photons after a Dirac vertex at `hit` (volume_photon_chain.h):
+// a new chain anchored at a reconnectable `parent`, or `parent`'s chain one vertex longer;
+// -1 (no walk possible) for a BSDF that is not purely specular, an anchor at infinity or a
+// chain longer than kMaxPhotonChain. `din`: the arriving ray's direction.
+int32_t extend_chain(const PhotonParent& parent, const scene::SurfaceHit& hit, const scene::BsdfSample& bs,
+                     float u_lobe, const Vec3& din, const Vec3& wo, std::vector<gradients::PhotonChain>& chains) {
+  if (!hit.bsdf->is_purely_delta() || hit.shape < 0) return -1;
+  const bool anchor =
+      parent.kind == ParentKind::medium || parent.kind == ParentKind::surface || parent.kind == ParentKind::light;
+  const bool extend = parent.kind == ParentKind::specular && parent.chain >= 0 &&
+                      chains[size_t(parent.chain)].steps.size() < size_t(gradients::kMaxPhotonChain);
+  if (!anchor && !extend) return -1;
+  gradients::PhotonChainStep st;
+  st.p = hit.p;
+  st.shape = hit.shape;
+  st.prim = hit.prim;
+  st.lobe = bs.lobe;
+  st.u_lobe = u_lobe;
+  // Refraction: the arriving and leaving directions on opposite sides; eta as
+  // manifold/chain.h's (interior over exterior): bs.eta is eta_o / eta_i.
+  st.refraction = hit.ng.dot(-din) * hit.ng.dot(wo) < 0.0f;
+  st.eta = !st.refraction ? 1.0f : hit.ng.dot(-din) > 0.0f ? bs.eta : 1.0f / bs.eta;
+  if (st.refraction && st.eta == 1.0f) return -1;  // index-matched: no half vector
+  // A longer chain is a new record (beams recorded inside the chain keep the shorter one).
+  const int32_t idx = int32_t(chains.size());
+  if (anchor) chains.push_back(gradients::PhotonChain{parent, {}});
+  else chains.push_back(chains[size_t(parent.chain)]);
+  chains[size_t(idx)].steps.push_back(st);
+  return idx;
+}
+
 void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core::Rng& rng,
                std::vector<MediumPhoton>& out, PhotonTraceCounters& c, std::vector<PhotonParent>* parents,
                std::vector<pathspace::BidirVertex>& scratch, std::vector<MediumBeam>* beams, BeamTraceCounters& bc,
                std::vector<PhotonParent>* beam_parents, std::vector<MediumPlane>* planes, PlaneTraceCounters& plc,
-               core::Rng& plane_rng) {
+               core::Rng& plane_rng, std::vector<gradients::PhotonChain>* chains) {
   ++c.paths;
   Ray ray;
   Rgb beta;
@@ -211,8 +243,10 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
     if (!(hit.ng.dot(wo) * bs->wo.z() > 0.0f)) return;
     beta *= bs->weight;
     if (parents) {
+      const int32_t chain = chains && bs->is_delta() ? extend_chain(parent, hit, *bs, u_lobe, ray.d, wo, *chains) : -1;
       parent = PhotonParent{};
       parent.kind = bs->is_delta() ? ParentKind::specular : ParentKind::surface;
+      parent.chain = chain;
       parent.a = hit.p;
       parent.w = -ray.d;
       parent.ng = hit.ng;
@@ -222,6 +256,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
     }
     medium = scene::medium_toward(hit, wo, medium, cam_medium);
     if (parents) parent.medium = medium;
+    if (parent.chain >= 0) (*chains)[size_t(parent.chain)].steps.back().medium_out = medium;
     if (!survive(++s)) return;
     after_scatter = false;
     ray = scene.continue_ray(hit, wo);
@@ -235,8 +270,10 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<PhotonParent>* parents, std::vector<MediumBeam>* beams,
                           BeamTraceCounters* beam_counters, std::vector<PhotonParent>* beam_parents,
-                          std::vector<MediumPlane>* planes, PlaneTraceCounters* plane_counters) {
+                          std::vector<MediumPlane>* planes, PlaneTraceCounters* plane_counters,
+                          std::vector<gradients::PhotonChain>* chains) {
   if (!parents || !beams) beam_parents = nullptr;
+  if (!parents) chains = nullptr;
   const int64_t chunks = (params.paths + kChunk - 1) / kChunk;
   std::vector<std::vector<MediumPhoton>> parts(static_cast<size_t>(chunks));
   std::vector<std::vector<PhotonParent>> parent_parts(parents ? static_cast<size_t>(chunks) : 0);
@@ -245,6 +282,7 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
   std::vector<BeamTraceCounters> beam_chunk_counters(static_cast<size_t>(chunks));
   std::vector<std::vector<MediumPlane>> plane_parts(planes ? static_cast<size_t>(chunks) : 0);
   std::vector<PlaneTraceCounters> plane_chunk_counters(static_cast<size_t>(chunks));
+  std::vector<std::vector<gradients::PhotonChain>> chain_parts(chains ? static_cast<size_t>(chunks) : 0);
   std::vector<PhotonTraceCounters> chunk_counters(static_cast<size_t>(chunks));
   std::vector<char> done(size_t(chunks), 0);
   core::parallel_for(
@@ -257,11 +295,12 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
         std::vector<MediumBeam>* bp = beams ? &beam_parts[size_t(k)] : nullptr;
         std::vector<PhotonParent>* bpp = beam_parents ? &beam_parent_parts[size_t(k)] : nullptr;
         std::vector<MediumPlane>* plp = planes ? &plane_parts[size_t(k)] : nullptr;
+        std::vector<gradients::PhotonChain>* cp = chains ? &chain_parts[size_t(k)] : nullptr;
         // The planes' distances D come from their own stream: the light paths are unchanged.
         core::Rng plane_rng(params.seed, (uint64_t(params.iteration) << 32) | 0x50000000ull | uint64_t(k));
         for (int64_t i = 0; i < n; ++i)
           trace_one(scene, params, rng, parts[size_t(k)], chunk_counters[size_t(k)], pp, scratch, bp,
-                    beam_chunk_counters[size_t(k)], bpp, plp, plane_chunk_counters[size_t(k)], plane_rng);
+                    beam_chunk_counters[size_t(k)], bpp, plp, plane_chunk_counters[size_t(k)], plane_rng, cp);
         done[size_t(k)] = 1;
       },
       stop);
@@ -285,10 +324,21 @@ bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& pa
     }
   }
   if (planes) planes->clear();
+  if (chains) chains->clear();
   for (size_t k = 0; k < parts.size(); ++k) {
     const uint32_t offset = uint32_t(out.size());
     for (MediumPhoton& ph : parts[k]) ph.index += offset;  // chunk-local -> global
     out.insert(out.end(), parts[k].begin(), parts[k].end());
+    if (chains) {  // chunk-local chain indices -> global
+      const int32_t chain_offset = int32_t(chains->size());
+      for (PhotonParent& pp : parent_parts[k])
+        if (pp.chain >= 0) pp.chain += chain_offset;
+      if (beam_parents)
+        for (PhotonParent& pp : beam_parent_parts[k])
+          if (pp.chain >= 0) pp.chain += chain_offset;
+      chains->insert(chains->end(), std::make_move_iterator(chain_parts[k].begin()),
+                     std::make_move_iterator(chain_parts[k].end()));
+    }
     if (parents) parents->insert(parents->end(), parent_parts[k].begin(), parent_parts[k].end());
     if (beams) {
       const uint32_t beam_offset = uint32_t(beams->size());

@@ -60,7 +60,7 @@
 
 #include "core/math.h"
 #include "core/stats.h"
-#include "gradients/volume_photon_reconnect.h"
+#include "gradients/volume_photon_chain.h"
 #include "integrators/media_photons/photon_plane.h"
 #include "scene/scene.h"
 
@@ -126,13 +126,16 @@ struct PhotonTraceParams {
 // (the parent of every photon on the beam; G-Beam's reconnection). With `planes`, every
 // scattering event's photon plane (photon_plane.h; its D from a stream of its own, so
 // photons, beams and paths are bit-identical with and without planes), counted in
-// *plane_counters (required).
+// *plane_counters (required). With `chains` (needs `parents`), the specular chains of
+// photons behind purely specular surfaces (volume_photon_chain.h; PhotonParent::chain
+// indexes them); recording draws no random number.
 bool trace_medium_photons(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
                           std::vector<MediumPhoton>& out, PhotonTraceCounters& counters,
                           std::vector<gradients::PhotonParent>* parents = nullptr,
                           std::vector<MediumBeam>* beams = nullptr, BeamTraceCounters* beam_counters = nullptr,
                           std::vector<gradients::PhotonParent>* beam_parents = nullptr,
-                          std::vector<MediumPlane>* planes = nullptr, PlaneTraceCounters* plane_counters = nullptr);
+                          std::vector<MediumPlane>* planes = nullptr, PlaneTraceCounters* plane_counters = nullptr,
+                          std::vector<gradients::PhotonChain>* chains = nullptr);
 
 // The part [t0, t1] of the ray o + t d (d unit) inside the scene's bounds grown by one
 // diagonal on every side (the clip of beams and planes); t0 > t1 if it misses.
