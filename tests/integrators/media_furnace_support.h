@@ -29,6 +29,38 @@ inline void add_run(Runs& runs, const std::vector<double>& values) {
   for (size_t i = 0; i < values.size(); ++i) runs[i].push_back(values[i]);
 }
 
+// (test_gvpm, test_gvpm_chain)
+// Per run: the image mean (summed channels), then per block x block the mean of the forward
+// differences in x and in y (summed channels) over the block's pixels whose neighbour
+// exists -- from `dx`/`dy` layers plus the pixel differences of the unshifted `direct`
+// layer (gvpm's gradients cover only the primary ray's gathers), or from the image's own
+// pixel differences (dx, dy null: volpath).
+inline std::vector<double> gradient_blocks(const core::Image& img, const core::Image* dx, const core::Image* dy,
+                                           const core::Image* direct, int block) {
+  const int w = img.width(), h = img.height();
+  std::vector<double> out;
+  double total = 0;
+  for (const auto& p : img.pixels()) total += double(p.sum());
+  out.push_back(total / double(img.size()));
+  for (int axis = 0; axis < 2; ++axis)
+    for (int by = 0; by < h / block; ++by)
+      for (int bx = 0; bx < w / block; ++bx) {
+        double s = 0;
+        int n = 0;
+        for (int y = by * block; y < (by + 1) * block; ++y)
+          for (int x = bx * block; x < (bx + 1) * block; ++x) {
+            const int qx = x + (axis == 0), qy = y + (axis == 1);
+            if (qx >= w || qy >= h) continue;
+            const core::Image* g = axis == 0 ? dx : dy;
+            s += g ? double((*g)(x, y).sum()) + double((*direct)(qx, qy).sum() - (*direct)(x, y).sum())
+                   : double(img(qx, qy).sum() - img(x, y).sum());
+            ++n;
+          }
+        out.push_back(s / double(n));
+      }
+  return out;
+}
+
 // Albedo 1, spectrally varying density, forward-scattering HG: the furnace ball's medium.
 inline scene::HomogeneousMedium furnace_medium() {
   scene::HomogeneousMedium m;

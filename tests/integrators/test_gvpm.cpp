@@ -240,37 +240,6 @@ namespace {
 
 constexpr int kBoxRes = 32, kBoxBlock = 4, kBoxDepth = 8, kBoxRuns = 8, kBoxIterations = 16;
 
-// Per run: the image mean (summed channels), then per 4x4 block the mean of the forward
-// differences in x and in y (summed channels) over the block's pixels whose neighbour
-// exists -- from `dx`/`dy` layers plus the pixel differences of the unshifted `direct`
-// layer (gvpm's gradients cover only the primary ray's gathers), or from the image's own
-// pixel differences (dx, dy null: volpath).
-std::vector<double> gradient_blocks(const core::Image& img, const core::Image* dx, const core::Image* dy,
-                                    const core::Image* direct = nullptr) {
-  const int w = img.width(), h = img.height();
-  std::vector<double> out;
-  double total = 0;
-  for (const auto& p : img.pixels()) total += double(p.sum());
-  out.push_back(total / double(img.size()));
-  for (int axis = 0; axis < 2; ++axis)
-    for (int by = 0; by < h / kBoxBlock; ++by)
-      for (int bx = 0; bx < w / kBoxBlock; ++bx) {
-        double s = 0;
-        int n = 0;
-        for (int y = by * kBoxBlock; y < (by + 1) * kBoxBlock; ++y)
-          for (int x = bx * kBoxBlock; x < (bx + 1) * kBoxBlock; ++x) {
-            const int qx = x + (axis == 0), qy = y + (axis == 1);
-            if (qx >= w || qy >= h) continue;
-            const core::Image* g = axis == 0 ? dx : dy;
-            s += g ? double((*g)(x, y).sum()) + double((*direct)(qx, qy).sum() - (*direct)(x, y).sum())
-                   : double(img(qx, qy).sum() - img(x, y).sum());
-            ++n;
-          }
-        out.push_back(s / double(n));
-      }
-  return out;
-}
-
 // One reference per resolution (the scenes differ only in it).
 const Runs& volpath_reference(const scene::Scene& s) {
   static std::map<int, Runs> refs;
@@ -280,7 +249,7 @@ const Runs& volpath_reference(const scene::Scene& s) {
     integrators::Settings settings;
     auto in = integrators::make_integrator("volpath", settings);
     const auto r = in->render(s, test::quiet_options(kBoxIterations * 8, 500 + uint64_t(k), kBoxDepth));
-    add_run(ref, gradient_blocks(r.layers[0].image, nullptr, nullptr));
+    add_run(ref, test::gradient_blocks(r.layers[0].image, nullptr, nullptr, nullptr, kBoxBlock));
   }
   return ref;
 }
@@ -299,7 +268,8 @@ void media_box_test(integrators::GvpmGather gather, int res = kBoxRes, Defects d
       const auto r = render(*s, c, kBoxIterations, 700 + uint64_t(k), kBoxDepth);
       shifted += r.stats.get(c.prefix() + ".pairs.shifted");
       fallback += r.stats.get(c.prefix() + ".pairs.fallback");
-      std::vector<double> v = gradient_blocks(layer(r, "recon_l2"), &layer(r, "dx"), &layer(r, "dy"), &layer(r, "direct"));
+      std::vector<double> v =
+          test::gradient_blocks(layer(r, "recon_l2"), &layer(r, "dx"), &layer(r, "dy"), &layer(r, "direct"), kBoxBlock);
       add_run(runs, v);
     }
     std::printf("[%s media box] fault %d: pairs shifted %lld, fallback %lld\n", c.prefix().c_str(), int(c.fault),
