@@ -29,7 +29,8 @@ bool blocked(const scene::Scene& scene, const BidirVertex& a, const BidirVertex&
 }  // namespace
 
 bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
-             const MisConfig& config, Connection& out, bool test_visibility, const ReversePdfs* reverse) {
+             const MisConfig& config, Connection& out, bool test_visibility, const ReversePdfs* reverse,
+             GridTracking* grid) {
   out = Connection{};
   const BidirVertex& z = camera[t - 1];
   if (s == 0) {
@@ -67,7 +68,7 @@ bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const B
   EdgeMedia edge;
   if (media) {
     out.tested = true;
-    edge = trace_edge(scene, z, light[s - 1]);
+    edge = trace_edge(scene, z, light[s - 1], grid);
     out.occluded = edge.blocked;
     if (config.fault != BidirFault::connection_without_transmittance) out.value *= edge.tr;
     if (out.occluded || is_black(out.value)) return false;

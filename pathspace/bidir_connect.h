@@ -10,6 +10,7 @@
 // conversions use geometric normals. Visibility is tested only for non-zero values.
 #pragma once
 
+#include "pathspace/bidir_media.h"
 #include "pathspace/bidir_mis.h"
 
 namespace dp::pathspace {
@@ -26,8 +27,11 @@ struct Connection {
 // Needs s + t >= 2, t >= 1, s <= light size, t <= camera size. `test_visibility` false:
 // the caller knows the connection segment is unoccluded (a shifted path sharing it).
 // `reverse`: the connection's reverse densities if already known (bidir_mis.h).
+// `grid`: the rng for the ratio-tracking transmittance of grid media on the connection
+// (bidir_media.h); renderers of grid scenes must pass one (null: the deterministic
+// stand-in exp(-tau_hat), for MIS-only callers).
 bool connect(const scene::Scene& scene, const BidirVertex* light, int s, const BidirVertex* camera, int t,
              const MisConfig& config, Connection& out, bool test_visibility = true,
-             const ReversePdfs* reverse = nullptr);
+             const ReversePdfs* reverse = nullptr, GridTracking* grid = nullptr);
 
 }  // namespace dp::pathspace

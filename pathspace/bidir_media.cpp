@@ -1,6 +1,10 @@
 #include "pathspace/bidir_media.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
 
@@ -8,12 +12,74 @@ namespace dp::pathspace {
 
 namespace {
 const scene::HomogeneousMedium& medium_of(const scene::Scene& scene, int m) { return scene.media()[size_t(m)]; }
+
+// The end factors of one sub-segment: P(pass), and p at a medium vertex at either end
+// (homogeneous: the same p(len) at both; grid: the stand-ins of the header comment, one
+// quadrature for all three). at_a / at_b are evaluated only if asked for.
+using Factors = SpanFactors;
+Factors factors(const scene::Scene& scene, int medium, float len, const Span& span, bool need_a, bool need_b) {
+  Factors f;
+  if (medium < 0) return f;
+  const scene::HomogeneousMedium& m = medium_of(scene, medium);
+  if (!m.heterogeneous()) {
+    f.pass = scene::free_flight_pass_probability(m, len);
+    if (need_a || need_b) f.at_a = f.at_b = scene::free_flight_pdf(m, len);
+    return f;
+  }
+  f.pass = std::exp(-grid_optical_depth(m, span));
+  const float st = m.sigma_t()[0];
+  if (need_a) f.at_a = st * m.density->lookup(span.a) * f.pass;
+  if (need_b) f.at_b = span.to_infinity ? 0.0f : st * m.density->lookup(span.b) * f.pass;
+  return f;
+}
+
+// The transmittance of one sub-segment (from `o` along unit `d` for `len`, may be inf);
+// `pass`: its P(pass) stand-in, the grid's deterministic value without an rng.
+Rgb sub_transmittance(const scene::Scene& scene, int medium, const Vec3& o, const Vec3& d, float len, float pass,
+                      GridTracking* grid) {
+  const scene::HomogeneousMedium& m = medium_of(scene, medium);
+  if (!m.heterogeneous()) return scene::transmittance(m, len);
+  if (!grid || !grid->rng) return Rgb::Constant(pass);
+  if (!grid->ratio_tracking) return Rgb::Ones();
+  ++grid->ratio_estimates;
+  return scene::transmittance_grid(m, o, d, len, *grid->rng);
+}
+
+// a < b in lexicographic order (the canonical direction of a finite span).
+bool lex_less(const Vec3& a, const Vec3& b) {
+  if (a.x() != b.x()) return a.x() < b.x();
+  if (a.y() != b.y()) return a.y() < b.y();
+  return a.z() < b.z();
+}
 }  // namespace
 
-float end_factor(const scene::Scene& scene, int medium, float len, bool at_medium_vertex) {
-  if (medium < 0) return 1.0f;
-  const scene::HomogeneousMedium& m = medium_of(scene, medium);
-  return at_medium_vertex ? scene::free_flight_pdf(m, len) : scene::free_flight_pass_probability(m, len);
+float grid_optical_depth(const scene::HomogeneousMedium& m, const Span& span) {
+  const scene::DensityGrid& g = *m.density;
+  Vec3 o = span.a, d = span.b;
+  float len = kInfinity;
+  if (!span.to_infinity) {
+    const bool swap = lex_less(span.b, span.a);  // tau_hat(a, b) == tau_hat(b, a) exactly
+    o = swap ? span.b : span.a;
+    const Vec3 e = (swap ? span.a : span.b) - o;
+    len = e.norm();
+    if (!(len > 0.0f)) return 0.0f;
+    d = e / len;
+  }
+  float t0 = 0, t1 = 0;
+  if (!g.clip(o, d, len, t0, t1)) return 0.0f;
+  const Vec3 cells(float(std::max(g.nx - 1, 1)), float(std::max(g.ny - 1, 1)), float(std::max(g.nz - 1, 1)));
+  const float h = 0.5f * (g.hi - g.lo).cwiseQuotient(cells).minCoeff();
+  const int n = int(std::clamp(std::ceil((t1 - t0) / h), 1.0f, float(kMaxGridSteps)));
+  const float dt = (t1 - t0) / float(n);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += double(g.lookup(o + (t0 + (float(i) + 0.5f) * dt) * d));
+  return float(double(m.sigma_t()[0]) * double(dt) * sum);
+}
+
+float end_factor(const scene::Scene& scene, int medium, float len, const Span& span, bool at_medium_vertex,
+                 bool vertex_at_a) {
+  const Factors f = factors(scene, medium, len, span, at_medium_vertex && vertex_at_a, at_medium_vertex && !vertex_at_a);
+  return !at_medium_vertex ? f.pass : vertex_at_a ? f.at_a : f.at_b;
 }
 
 int medium_toward(const scene::Scene& scene, const BidirVertex& v, const Vec3& w) {
@@ -23,26 +89,29 @@ int medium_toward(const scene::Scene& scene, const BidirVertex& v, const Vec3& w
   return v.sp.ng.dot(w) < 0.0f ? v.interior : (v.exterior >= 0 ? v.exterior : scene.camera_medium());
 }
 
-void FlightChain::pass(const scene::Scene& scene, int medium, float len) {
-  const float p = end_factor(scene, medium, len, false);
+float FlightChain::pass(const scene::Scene& scene, int medium, float len, const Span& span) {
+  const Factors f = factors(scene, medium, len, span, m_n == 0, false);
   if (m_n == 0) {
     m_first_medium = medium;
-    m_first_len = len;
+    m_first = f;
   } else {
-    m_pass_after_first *= p;
+    m_pass_after_first *= f.pass;
   }
-  m_pass_all *= p;
+  m_pass_all *= f.pass;
   ++m_n;
+  return f.pass;
 }
 
-void FlightChain::finish(const scene::Scene& scene, int medium, float len, bool a_medium, bool b_medium) {
-  to_b = m_pass_all * end_factor(scene, medium, len, b_medium);
-  if (m_n == 0) to_a = end_factor(scene, medium, len, a_medium);
-  else to_a = m_pass_after_first * end_factor(scene, medium, len, false) *
-              end_factor(scene, m_first_medium, m_first_len, a_medium);
+float FlightChain::finish(const scene::Scene& scene, int medium, float len, const Span& span, bool a_medium,
+                          bool b_medium) {
+  const Factors f = factors(scene, medium, len, span, m_n == 0 && a_medium, b_medium);
+  to_b = m_pass_all * (b_medium ? f.at_b : f.pass);
+  if (m_n == 0) to_a = a_medium ? f.at_a : f.pass;
+  else to_a = m_pass_after_first * f.pass * (m_first_medium >= 0 && a_medium ? m_first.at_a : m_first.pass);
+  return f.pass;
 }
 
-EdgeMedia trace_edge(const scene::Scene& scene, const BidirVertex& a, const BidirVertex& b) {
+EdgeMedia trace_edge(const scene::Scene& scene, const BidirVertex& a, const BidirVertex& b, GridTracking* grid) {
   EdgeMedia e;
   const bool to_infinity = b.infinite();
   const Vec3 target = b.sp.p;
@@ -66,8 +135,9 @@ EdgeMedia trace_edge(const scene::Scene& scene, const BidirVertex& a, const Bidi
   for (;;) {
     if (!scene.intersect(r, h)) {
       const float len = to_infinity ? kInfinity : (target - at).norm();
-      if (m >= 0) e.tr *= scene::transmittance(medium_of(scene, m), len);
-      chain.finish(scene, m, len, a.kind == BidirKind::medium, b.kind == BidirKind::medium);
+      const Span span = to_infinity ? Span::ray(at, dir) : Span::between(at, target);
+      const float pass = chain.finish(scene, m, len, span, a.kind == BidirKind::medium, b.kind == BidirKind::medium);
+      if (m >= 0) e.tr *= sub_transmittance(scene, m, at, dir, len, pass, grid);
       e.to_b = chain.to_b;
       e.to_a = chain.to_a;
       e.b_medium = m;
@@ -79,8 +149,8 @@ EdgeMedia trace_edge(const scene::Scene& scene, const BidirVertex& a, const Bidi
       return e;
     }
     const float len = (h.p - at).norm();
-    if (m >= 0) e.tr *= scene::transmittance(medium_of(scene, m), len);
-    chain.pass(scene, m, len);
+    const float pass = chain.pass(scene, m, len, Span::between(at, h.p));
+    if (m >= 0) e.tr *= sub_transmittance(scene, m, at, dir, len, pass, grid);
     ++e.crossings;
     at = h.p;
     m = scene::medium_toward(h, dir, m, scene.camera_medium());

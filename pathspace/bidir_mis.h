@@ -30,6 +30,7 @@ enum class BidirFault : uint8_t {
   light_tracing_at_infinity,   // an environment seen directly counts the impossible (1, 1) strategy
   reverse_pdf_without_free_flight,  // the recomputed reverse densities miss the free-flight factors (media)
   connection_without_transmittance,  // a connection's value misses the transmittance of its media (bidir_connect.cpp)
+  connection_without_ratio_tracking,  // grid media on connections pass with Tr = 1 (bdpt_tracer.cpp: GridTracking)
 };
 
 struct MisConfig {

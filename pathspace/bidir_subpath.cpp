@@ -7,6 +7,7 @@
 #include "pathspace/bidir_media.h"
 #include "pathspace/scatter.h"
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
 #include "scene/shapes/shape.h"
@@ -92,9 +93,9 @@ bool point_back(const BidirVertex& prev, BidirVertex& v) {
 
 // Ends the edge into v with its last sub-segment (medium, len): v's free-flight factors
 // (bidir_media.h), and a fresh chain for the next edge.
-void close_edge(const scene::Scene& scene, FlightChain& chain, int medium, float len, bool prev_medium,
-                BidirVertex& v) {
-  chain.finish(scene, medium, len, prev_medium, v.kind == BidirKind::medium);
+void close_edge(const scene::Scene& scene, FlightChain& chain, int medium, float len, const Span& span,
+                bool prev_medium, BidirVertex& v) {
+  chain.finish(scene, medium, len, span, prev_medium, v.kind == BidirKind::medium);
   v.ff_fwd = chain.to_b;
   v.ff_rev = chain.to_a;
   chain = FlightChain{};
@@ -104,9 +105,11 @@ void close_edge(const scene::Scene& scene, FlightChain& chain, int medium, float
 // carried by the ray. Densities from vertex positions (bidir_vertex.h).
 // `from`: the surface vertex the ray leaves (anchored at it), or null for a ray from an
 // endpoint. In scenes with media each segment in a medium samples a free flight
-// (scene/media/free_flight.h) exactly as volpath: a scatter makes a medium vertex (its
-// direction from the phase function, weight 1), a pass multiplies beta by Tr / P(pass);
-// index-matched boundaries switch the medium and are not vertices (bidir_media.h).
+// (scene/media/free_flight.h; a grid medium: delta tracking, grid_tracking.h) exactly as
+// volpath: a scatter makes a medium vertex (its direction from the phase function, weight
+// 1), a pass multiplies beta by Tr / P(pass) (grid: 1); index-matched boundaries switch
+// the medium and are not vertices (bidir_media.h). The end factors of each sub-segment
+// come from its endpoints (seg_start: the previous vertex or boundary crossing).
 void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportMode mode,
                  const SubpathParams& params, core::Rng& rng, std::vector<BidirVertex>& path,
                  const scene::SurfaceHit* from = nullptr) {
@@ -121,6 +124,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
   int medium = !media ? -1 : path.back().kind == BidirKind::light ? kUnknown : medium_toward(scene, path.back(), ray.d);
   FlightChain chain;
   int crossings = 0;
+  Vec3 seg_start = path.back().sp.p;
   while (int(path.size()) < params.max_vertices) {
     const bool found = from_surface ? next_hit(scene, hit, ray.d, hit) : scene.intersect(ray, hit);
     if (medium == kUnknown) {
@@ -132,9 +136,14 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     const bool prev_medium = prev.kind == BidirKind::medium;
     if (medium >= 0) {
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
-      const float u_channel = rng.uniform(), u_distance = rng.uniform();
-      const scene::FreeFlightSample ff =
-          scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      scene::FreeFlightSample ff;
+      if (med.heterogeneous()) {
+        if (params.grid) ++params.grid->flights;
+        ff = scene::sample_free_flight_grid(med, ray.o, ray.d, found ? hit.t : kInfinity, rng);
+      } else {
+        const float u_channel = rng.uniform(), u_distance = rng.uniform();
+        ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      }
       beta *= ff.weight;
       if (is_black(beta)) break;
       if (ff.scattered) {
@@ -144,7 +153,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
         v.sp.ng = Vec3::Zero();
         v.medium = int16_t(medium);
         if (!point_back(prev, v)) break;
-        close_edge(scene, chain, medium, ff.t, prev_medium, v);
+        close_edge(scene, chain, medium, ff.t, Span::between(seg_start, v.sp.p), prev_medium, v);
         v.beta = beta;
         set_densities(scene, path.data(), path.size(), v, mode);
         path.push_back(v);
@@ -164,6 +173,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
         cur.rr_out = q;
         cur.weight_out = Rgb::Constant(1.0f / q);
         ray.o = cur.sp.p;
+        seg_start = cur.sp.p;
         ray.d = wo;
         ray.tmin = 0.0f;
         ray.tmax = kInfinity;
@@ -173,14 +183,15 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     }
     if (!found) {
       if (mode == scene::TransportMode::radiance && scene.environment()) {
-        chain.finish(scene, medium, kInfinity, prev_medium, false);
+        chain.finish(scene, medium, kInfinity, Span::ray(seg_start, ray.d), prev_medium, false);
         add_environment_vertex(scene, ray.d, beta, path, chain);
       }
       break;
     }
     if (media && scene::is_index_matched(hit)) {  // not a vertex: switch media, keep the direction
       if (++crossings > kMaxEdgeCrossings) break;
-      chain.pass(scene, medium, hit.t);
+      chain.pass(scene, medium, hit.t, Span::between(seg_start, hit.p));
+      seg_start = hit.p;
       medium = scene::medium_toward(hit, ray.d, medium, cam_medium);
       ray = scene.continue_ray(hit, ray.d);
       from_surface = true;
@@ -190,7 +201,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     if (!point_back(prev, v)) break;
     if (media) {
       v.medium = int16_t(medium);
-      close_edge(scene, chain, medium, hit.t, prev_medium, v);
+      close_edge(scene, chain, medium, hit.t, Span::between(seg_start, hit.p), prev_medium, v);
     }
     v.beta = beta;
     set_densities(scene, path.data(), path.size(), v, mode);
@@ -222,6 +233,7 @@ void random_walk(const scene::Scene& scene, Ray ray, Rgb beta, scene::TransportM
     cur.weight_out = bs->weight / q;
     if (media) medium = scene::medium_toward(hit, wo, medium, cam_medium);
     ray = scene.continue_ray(hit, wo);  // ray.o: the origin of a medium vertex's distance
+    seg_start = hit.p;
     from_surface = true;
   }
 }

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "pathspace/bidir_vertex.h"
+#include "pathspace/bidir_media.h"
 
 namespace dp::pathspace {
 
@@ -20,6 +20,8 @@ struct SubpathParams {
   // Stop once a vertex has sampled a non-Dirac lobe (that vertex is kept, its successor
   // is not traced): G-PM needs the camera subpath only up to z_b.
   bool stop_after_smooth = false;
+  // Grid media (bidir_media.h): counts the walks' delta-tracking free flights (optional).
+  GridTracking* grid = nullptr;
 };
 
 // z_0 = pinhole, z_1 .. along the primary ray through `raster` (continuous pixels).

@@ -30,7 +30,8 @@
 //  * Camera pdfs use the whole-image direction density (PerspectiveCamera::
 //    pdf_direction); one light path is traced per camera sample, so the sample counts
 //    of camera and light strategies are equal and cancel in the MIS weights.
-//  * Participating media (homogeneous; pathspace/bidir_media.h): a walk that scatters in
+//  * Participating media (homogeneous and grid; pathspace/bidir_media.h, whose grid end
+//    factors are deterministic stand-ins of the true densities): a walk that scatters in
 //    a medium makes a vertex of kind `medium` (sp.p only, no normal). Densities there are
 //    volume densities: solid_angle_to_area drops the cosine at a medium target (Veach
 //    1997, Eq. 8.10 with |cos| = 1; Pauly et al. 2000). Each edge's free-flight factors

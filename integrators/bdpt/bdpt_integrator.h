@@ -3,8 +3,9 @@
 // Image = camera-side estimate per pixel (divided by its sample count) + light-tracing
 // splats (scaled by pixel count / light paths traced), merged deterministically
 // (splat_merger.h). Every light kind: area, point, spot, directional, environment.
-// Homogeneous participating media: medium vertices, free flights and transmittances in
-// the walks and connections (pathspace/bidir_media.h); grid media are refused.
+// Participating media: medium vertices, free flights and transmittances in the walks and
+// connections (pathspace/bidir_media.h); grid media by delta tracking (walks) and ratio
+// tracking (connections), with deterministic stand-ins for their MIS densities.
 #pragma once
 
 #include "integrators/bdpt/bdpt_settings.h"
@@ -22,6 +23,7 @@ class BdptIntegrator final : public Integrator {
   // --partial / --mpi: the raw sums "camera" and "light" (splats) and the count "spp".
   bool supports_raw() const override { return true; }
   bool renders_media() const override { return true; }
+  bool renders_grid_media() const override { return true; }
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

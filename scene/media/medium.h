@@ -20,7 +20,7 @@ struct PhaseFunctionDesc {
 // A homogeneous medium, or -- with `density` set -- a heterogeneous one whose coefficients
 // at x are density(x) x sigma_a, sigma_s (a grid medium: grid_tracking.h samples and
 // attenuates it; its sigma_t is grey, equal in the three channels, checked by the
-// loaders). Only `volpath` (and `path`, which delegates to it) renders grid media
+// loaders). `volpath` (and `path`, which delegates to it) and `bdpt` render grid media
 // (Integrator::renders_grid_media).
 struct HomogeneousMedium {
   std::string name;

@@ -11,6 +11,9 @@
 //      re-traced edges).
 // Must reject BidirFault::reverse_pdf_without_free_flight (a connection's reverse
 // densities without the free-flight factors): the sums move off 1.
+// Grid media (test::grid_media_box: grid fog, a ramp-density grid smoke ball): the end
+// factors are deterministic stand-ins from the sub-segments' endpoints (bidir_media.h),
+// and the same checks (1), (2) and the fault's rejection must hold.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -103,4 +106,20 @@ TEST_CASE("bdpt in media: the MIS check rejects reverse densities without free-f
   const Outcome o = check(*fog, MisConfig{MisHeuristic::power, BidirFault::reverse_pdf_without_free_flight}, 400);
   report("fault: no free-flight factor", o);
   CHECK(o.max_sum_error > 0.05);
+}
+
+TEST_CASE("bdpt in grid media: MIS weights over all strategies of a path sum to 1", "[unit]") {
+  const auto grid = test::grid_media_box(16);
+  constexpr double kTol = 5e-4;
+  for (const auto heuristic : {MisHeuristic::power, MisHeuristic::balance}) {
+    const Outcome o = check(*grid, MisConfig{heuristic, BidirFault::none}, 400);
+    report(heuristic == MisHeuristic::power ? "grid, power" : "grid, balance", o);
+    REQUIRE(o.paths > 300);
+    CHECK(o.medium_connections > 100);
+    CHECK(o.max_sum_error < kTol);
+    CHECK(o.max_weight_error < kTol);
+  }
+  const Outcome bad = check(*grid, MisConfig{MisHeuristic::power, BidirFault::reverse_pdf_without_free_flight}, 400);
+  report("grid, fault: no free-flight factor", bad);
+  CHECK(bad.max_sum_error > 0.05);
 }

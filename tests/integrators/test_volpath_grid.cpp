@@ -115,7 +115,8 @@ TEST_CASE("volpath: a constant grid medium renders as the homogeneous one", "[st
   for (const auto& v : r)
     for (double x : v) CHECK(std::isfinite(x));
   CHECK(ramp_flights > 0);
-  // Only volpath and path render grid media; vpm (homogeneous only) refuses them.
+  // volpath, path and bdpt render grid media (bdpt: test_bdpt_grid.cpp); vpm (homogeneous
+  // only) refuses them.
   integrators::Settings s;
   CHECK_THROWS_WITH(integrators::check_scene_support(*integrators::make_integrator("vpm", s), *grid),
                     Catch::Contains("homogeneous media only") && Catch::Contains("volpath"));

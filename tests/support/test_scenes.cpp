@@ -176,4 +176,49 @@ std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_bal
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
+namespace {
+// A grid medium of grey extinction sigma_t at density 1 with the given albedo.
+scene::HomogeneousMedium grid_medium(const scene::DensityGrid& g, float sigma_t, const Rgb& albedo, float phase_g) {
+  scene::HomogeneousMedium m = make_medium(sigma_t * (Rgb::Ones() - albedo), sigma_t * albedo, phase_g);
+  m.density = std::make_shared<scene::DensityGrid>(g);
+  return m;
+}
+}  // namespace
+
+std::unique_ptr<scene::Scene> grid_media_box(int resolution) {
+  auto s = std::make_unique<scene::Scene>();
+  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
+  const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
+  add_box(*s, {white, white, red, white, white, white});
+  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
+  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  const Vec3 c(-0.45f, -0.6f, -0.2f);
+  scene::DensityGrid ramp;
+  ramp.nx = ramp.ny = ramp.nz = 3;
+  ramp.lo = c - Vec3::Constant(0.4f);
+  ramp.hi = c + Vec3::Constant(0.4f);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 3; ++x) ramp.values.push_back(float(x));
+  ramp.finalize("grid_media_box");
+  auto smoke = std::make_unique<scene::Sphere>(c, 0.4f);
+  smoke->material = s->add_bsdf(scene::make_null(), "none");
+  smoke->interior_medium = s->add_medium(grid_medium(ramp, 2.0f, Rgb(0.9f, 0.7f, 0.5f), 0.5f));
+  s->add_shape(std::move(smoke));
+  auto glass = std::make_unique<scene::Sphere>(Vec3(0.45f, -0.6f, 0.2f), 0.4f);
+  glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
+  glass->interior_medium = s->add_medium(make_medium(Rgb(0.2f, 0.8f, 1.6f), Rgb::Constant(0.3f), 0.0f));
+  s->add_shape(std::move(glass));
+  scene::DensityGrid fog;
+  fog.nx = fog.ny = fog.nz = 5;
+  fog.lo = Vec3::Constant(-1.0f);
+  fog.hi = Vec3::Constant(1.0f);
+  for (int z = 0; z < 5; ++z)
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 5; ++x) fog.values.push_back(0.5f + 0.25f * float((x + 2 * y + 3 * z) % 5));
+  fog.finalize("grid_media_box");
+  s->set_camera_medium(s->add_medium(grid_medium(fog, 0.2f, Rgb::Constant(0.75f), -0.3f)));
+  return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
+}
+
 }  // namespace dp::test

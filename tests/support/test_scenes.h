@@ -53,4 +53,11 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
 // holds no medium (no caustics; the smoke ball is the only medium besides the fog).
 std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass = true);
 
+// media_box (fog, glass ball) with grid media (scene/media/grid_tracking.h): the smoke
+// ball's medium a grid over the ball's box whose density ramps 0 .. 2 along x (sigma_t 2
+// at density 1, albedo (0.9, 0.7, 0.5), HG g = 0.5), the fog a 5^3 grid over the whole box
+// with densities 0.5 .. 1.5 varying on every axis (sigma_t 0.2, albedo 0.75, g = -0.3);
+// the glass ball's tinted medium stays homogeneous.
+std::unique_ptr<scene::Scene> grid_media_box(int resolution);
+
 }  // namespace dp::test
