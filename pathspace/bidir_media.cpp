@@ -67,9 +67,7 @@ float grid_optical_depth(const scene::HomogeneousMedium& m, const Span& span) {
   }
   float t0 = 0, t1 = 0;
   if (!g.clip(o, d, len, t0, t1)) return 0.0f;
-  const Vec3 cells(float(std::max(g.nx - 1, 1)), float(std::max(g.ny - 1, 1)), float(std::max(g.nz - 1, 1)));
-  const float h = 0.5f * (g.hi - g.lo).cwiseQuotient(cells).minCoeff();
-  const int n = int(std::clamp(std::ceil((t1 - t0) / h), 1.0f, float(kMaxGridSteps)));
+  const int n = kGridSteps;
   const float dt = (t1 - t0) / float(n);
   double sum = 0.0;
   for (int i = 0; i < n; ++i) sum += double(g.lookup(o + (t0 + (float(i) + 0.5f) * dt) * d));

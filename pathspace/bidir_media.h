@@ -27,7 +27,9 @@
 // Sec. 9.2: any such weights do; the balance/power heuristics are merely the good
 // choices), so the end factors of a grid sub-segment a-b use a DETERMINISTIC stand-in:
 //   tau_hat(a, b) = midpoint quadrature of int sigma_t over [a, b] clipped to the grid's
-//                   box, steps of at most half a voxel (<= kMaxGridSteps of them), the
+//                   box, kGridSteps equal steps whatever its length (a step count that changed
+//                   with the length would jump between a walk's and a re-trace's float
+//                   crossing points, and the weights would miss 1 there), the
 //                   endpoints taken in a fixed (lexicographic) order so that
 //                   tau_hat(a, b) == tau_hat(b, a) bit for bit;
 //   P(pass) ~ exp(-tau_hat),   p(t) at the medium vertex x ~ sigma_t(x) exp(-tau_hat),
@@ -50,8 +52,10 @@ namespace dp::pathspace {
 // ends (numerical trouble), as volpath's kMaxNullCrossings.
 constexpr int kMaxEdgeCrossings = 256;
 
-// Steps of the grid media's optical-depth quadrature (header comment), at most.
-constexpr int kMaxGridSteps = 1024;
+// Steps of the grid media's optical-depth quadrature (header comment). Only the MIS
+// weights' quality depends on it (not unbiasedness). bdpt on cornell_smoke with a 64^3 grid,
+// 16 spp: 11.9 s with 16 steps, 26.7 s with half-voxel steps (6.4 s homogeneous).
+constexpr int kGridSteps = 16;
 
 // The endpoints of a sub-segment: a to b, or (to_infinity) from a along unit direction b.
 struct Span {
