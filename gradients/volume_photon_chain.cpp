@@ -137,35 +137,48 @@ bool eval_chain(const scene::Scene& scene, const PhotonChain& c, const std::vect
 
 }  // namespace
 
-ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const PhotonChain& chain, int photon_medium,
-                                         const Vec3& b, const Vec3& b_offset, const ChainReconnectSettings& settings,
+ChainBase chain_base(const scene::Scene& scene, const PhotonChain& chain, int photon_medium, const Vec3& b,
+                     ChainFault fault, manifold::WalkStats* stats) {
+  ChainBase base;
+  if (chain.steps.empty()) return base;
+  const Vec3d bd = d3(b);
+  base.last = (bd - d3(chain.steps.back().p)).normalized();
+  // Re-traced exactly from the anchor (the light walk's side): D(a -> b).
+  manifold::Chain built;
+  if (!build_photon_chain(scene, chain, bd, base.last, built)) return base;
+  base.status = manifold::retrace(scene, built, built.v[1].p(), base.exact);
+  if (stats) ++stats->traces;
+  if (base.status == WalkStatus::ok) base.status = chain_volume_density(base.exact, base.D, fault);
+  if (base.status != WalkStatus::ok) return base;
+  std::vector<Vec3> vb(chain.steps.size());
+  for (size_t i = 0; i < vb.size(); ++i) vb[i] = chain.steps[i].p;
+  bool occluded = false;
+  if (!eval_chain(scene, chain, vb, b, photon_medium, base.f, base.p, occluded)) base.status = WalkStatus::invalid_input;
+  return base;
+}
+
+ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const PhotonChain& chain, const ChainBase& base,
+                                         int photon_medium, const Vec3& b_offset, const ChainReconnectSettings& settings,
                                          manifold::WalkStats* stats) {
   ChainReconnection r;
-  const size_t m = chain.steps.size();
-  if (m == 0) return r;
-  const Vec3d bd = d3(b), bo = d3(b_offset);
-  const Vec3d last = (bd - d3(chain.steps.back().p)).normalized();
-  auto fail = [&](WalkStatus st) {
-    r.walk = st;
-    if (stats) stats->record(st, 0);
+  if (base.status != WalkStatus::ok) {  // numerically lost (a base that cannot be re-traced)
+    r.walk = base.status;
+    if (stats) stats->record(base.status, 0);
     return r;
-  };
-  // The base chain re-traced exactly from its anchor (the light walk's side), ending on
-  // the plane through b normal to its last segment: D(a -> b).
-  Chain base, exact;
-  if (!build_photon_chain(scene, chain, bd, last, base)) return fail(WalkStatus::invalid_input);
-  WalkStatus st = manifold::retrace(scene, base, base.v[1].p(), exact);
-  if (stats) ++stats->traces;
-  if (st != WalkStatus::ok) return fail(st);
-  double D = 0.0, D_off = 0.0;
-  st = chain_volume_density(exact, D, settings.fault);
-  if (st != WalkStatus::ok) return fail(st);
-  // The walk: the end moves in the plane through b' (normal: the base's last segment).
-  Chain start = exact;
-  start.v.back() = manifold::make_plane_end(bo, last);
+  }
+  const size_t m = chain.steps.size();
+  const Vec3d bo = d3(b_offset);
+  // The walk: the end moves in the plane through b' (normal: the base's last segment). The
+  // base's end slides along its last ray onto that plane, so the start chain stays exact
+  // (no re-trace before the first Newton step).
+  Chain start = base.exact;
+  const Vec3d b_end = start.v.back().p();
+  start.v.back() = manifold::make_plane_end(bo, base.last);
+  start.v.back().f.p = b_end + base.last * (bo - b_end).dot(base.last);
   manifold::WalkSettings ws;
   ws.max_iterations = settings.max_iterations;
   ws.accept_distance = settings.accept_distance;
+  ws.exact_input = true;
   const manifold::WalkResult w = manifold::walk(scene, start, bo, ws, stats);
   r.walk = w.status;
   if (!w.ok()) return r;
@@ -173,29 +186,32 @@ ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const Photon
   Chain off = w.chain;
   const Vec3d end = off.v.back().p();
   off.v.back() = manifold::make_plane_end(end, (end - off.v[m].p()).normalized());
-  st = chain_volume_density(off, D_off, settings.fault);
+  double D_off = 0.0;
+  const WalkStatus st = chain_volume_density(off, D_off, settings.fault);
   if (st != WalkStatus::ok) {
     r.walk = st;
     return r;
   }
-  std::vector<Vec3> vb(m), vo(m);
-  for (size_t i = 0; i < m; ++i) {
-    vb[i] = chain.steps[i].p;
-    vo[i] = w.chain.v[i + 1].p().cast<float>();
-  }
+  std::vector<Vec3> vo(m);
+  for (size_t i = 0; i < m; ++i) vo[i] = w.chain.v[i + 1].p().cast<float>();
   const Vec3 x_off = end.cast<float>();
-  Rgb fb, fo;
-  double pb = 0.0, po = 0.0;
-  bool base_occluded = false;
-  if (!eval_chain(scene, chain, vb, b, photon_medium, fb, pb, base_occluded)) return r;  // numerically lost
+  Rgb fo;
+  double po = 0.0;
   if (!eval_chain(scene, chain, vo, x_off, photon_medium, fo, po, r.occluded)) return r;
-  const float d_ratio = float(D_off / D);
-  for (int c = 0; c < 3; ++c) r.ratio[c] = fb[c] > 0.0f ? fo[c] / fb[c] * d_ratio : 0.0f;
-  r.pdf_ratio = (po * D_off) / (pb * D);
+  const float d_ratio = float(D_off / base.D);
+  for (int c = 0; c < 3; ++c) r.ratio[c] = base.f[c] > 0.0f ? fo[c] / base.f[c] * d_ratio : 0.0f;
+  r.pdf_ratio = (po * D_off) / (base.p * base.D);
   r.w = (x_off - vo.back()).normalized();
   r.b_offset = x_off;
   r.ok = !is_black(r.ratio) && r.pdf_ratio > 0.0 && std::isfinite(r.pdf_ratio) && is_finite(r.ratio);
   return r;
+}
+
+ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const PhotonChain& chain, int photon_medium,
+                                         const Vec3& b, const Vec3& b_offset, const ChainReconnectSettings& settings,
+                                         manifold::WalkStats* stats) {
+  const ChainBase base = chain_base(scene, chain, photon_medium, b, settings.fault, stats);
+  return reconnect_photon_chain(scene, chain, base, photon_medium, b_offset, settings, stats);
 }
 
 }  // namespace dp::gradients

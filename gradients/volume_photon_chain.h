@@ -94,7 +94,24 @@ manifold::WalkStatus chain_volume_density(const manifold::Chain& chain, double& 
 bool build_photon_chain(const scene::Scene& scene, const PhotonChain& c, const Vec3d& end, const Vec3d& normal,
                         manifold::Chain& out);
 
-// The reconnection of base photon b (in `photon_medium`) to the offset position b_offset.
+// The base side of a reconnection, the same for every shift of one photon (the caller may
+// keep it for the photon's other neighbours): the chain re-traced exactly from its anchor,
+// ending on the plane through b normal to its last segment, its D, f and p.
+struct ChainBase {
+  manifold::WalkStatus status = manifold::WalkStatus::invalid_input;  // ok: the rest is valid
+  manifold::Chain exact;
+  Vec3d last{0, 0, 1};  // unit direction of the last segment
+  double D = 0, p = 0;
+  Rgb f = Rgb::Zero();
+};
+ChainBase chain_base(const scene::Scene& scene, const PhotonChain& chain, int photon_medium, const Vec3& b,
+                     ChainFault fault = ChainFault::none, manifold::WalkStats* stats = nullptr);
+
+// The reconnection of base photon b (in `photon_medium`; `base` its chain_base) to b_offset.
+ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const PhotonChain& chain, const ChainBase& base,
+                                         int photon_medium, const Vec3& b_offset, const ChainReconnectSettings& settings,
+                                         manifold::WalkStats* stats = nullptr);
+// The same, computing the base side first.
 ChainReconnection reconnect_photon_chain(const scene::Scene& scene, const PhotonChain& chain, int photon_medium,
                                          const Vec3& b, const Vec3& b_offset, const ChainReconnectSettings& settings,
                                          manifold::WalkStats* stats = nullptr);

@@ -30,6 +30,10 @@ GvpmSettings GvpmSettings::read_gbeam(Settings& s) {
   g.gather = GvpmGather::beams;
   g.distance_samples = 1;
   g.photons = 20000;  // light paths, as `beam` (beam_settings.h)
+  // No manifold walk by default: a Beam-Beam 3D query shifts ~100x more photons than a
+  // point query, and on SPOTLIGHT the walks made an iteration 5.3x slower (7.9 vs 1.5 s for
+  // 2 iterations at 128^2) for no gain at equal time (bench/RESULTS.md).
+  g.manifold = false;
   g.read_common(s, 0.001);
   g.read_gradient_keys(s);
   return g;

@@ -288,6 +288,7 @@ void GvpmTracer::sample(int px, int py, core::Rng& rng, GvpmScratch& sc, gradien
   sc.points.clear();
   sc.beam_photons.clear();
   sc.plane_terms.clear();
+  sc.chain_bases.clear();
   // The unshifted part: vpm's camera path without the primary ray's gathers.
   const LaterSegments later(m_later, m_primary_unshifted, m_max_depth - 1);
   const Rgb direct = m_camera.radiance(primary, m_later ? &later : nullptr, rng, counters.camera);
@@ -399,8 +400,12 @@ void GvpmTracer::offsets(int nb, int px, int py, const Vec2& raster, GvpmScratch
               cs.max_iterations = m_settings.manifold_iterations;
               cs.fault = m_settings.chain_fault;
               if (m_settings.manifold_relaxed) cs.accept_distance = std::max(0.0, double(m_radius) - double((b_off - d_off).norm()));
-              const gradients::ChainReconnection cr = gradients::reconnect_photon_chain(
-                  m_scene, (*m_chains)[size_t(parent.chain)], ph.medium, ph.p, b_off, cs, &counters.walks);
+              const gradients::PhotonChain& chain = (*m_chains)[size_t(parent.chain)];
+              // The base side once per photon and camera sample (its four neighbours share it).
+              auto [it, fresh] = sc.chain_bases.try_emplace(&ph);
+              if (fresh) it->second = gradients::chain_base(m_scene, chain, ph.medium, ph.p, cs.fault, &counters.walks);
+              const gradients::ChainReconnection cr =
+                  gradients::reconnect_photon_chain(m_scene, chain, it->second, ph.medium, b_off, cs, &counters.walks);
               rec = cr;
               if (cr.ok) {
                 b_off = cr.b_offset;

@@ -40,6 +40,7 @@
 #include <array>
 #include <deque>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/rng.h"
@@ -106,6 +107,7 @@ struct GvpmScratch {
   std::vector<GvpmTerm> terms;
   std::vector<GvpmPlaneTerm> plane_terms;  // gplane
   std::deque<MediumPhoton> beam_photons;  // gbeam: the photons drawn on beams (stable addresses)
+  std::unordered_map<const MediumPhoton*, gradients::ChainBase> chain_bases;  // this sample's chain photons
   PairSplats splats;
 };
 

@@ -4,6 +4,7 @@
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium_interface.h"
 
 namespace dp::integrators {
@@ -72,7 +73,10 @@ Rgb MediaCameraTracer::trace(const Ray& primary, const MediumGather* gather, cor
         const float seg = found ? hit.t : kInfinity;
         ++counters.gather.segments;
         L += beta * gather->gather(ray, seg, medium, m_max_depth - depth, rng, counters.gather);
-        beta *= scene::transmittance(m_scene.media()[size_t(medium)], seg);
+        const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
+        // A grid medium's Tr by ratio tracking (grid_tracking.h: unbiased, as volpath's).
+        beta *= med.heterogeneous() ? scene::transmittance_grid(med, ray.o, ray.d, seg, rng)
+                                    : scene::transmittance(med, seg);
         if (is_black(beta)) break;
       }
     }

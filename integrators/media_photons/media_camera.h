@@ -6,7 +6,7 @@
 //   L_m = int_0^s Tr(c, x_t) sigma_s L_i(x_t, -w) dt        (Gruson et al. 2018, Eq. 5:
 // the photon estimate replaces the last camera edge dc and the light edge ab), and the
 // path goes on to the surface with the segment's transmittance Tr(s) as a factor
-// (deterministic, no free-flight sampling). Every light path is so counted once: its
+// (no free-flight sampling; closed form, or ratio tracking in a grid medium). Every light path is so counted once: its
 // vertices up to the first medium vertex seen from the camera by the camera path, the
 // rest by a photon (photon_tracer.h). max_depth: a gather on the t-th camera segment uses
 // photons of depth <= max_depth - t (volpath's path length).

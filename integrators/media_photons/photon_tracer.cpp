@@ -10,6 +10,7 @@
 #include "pathspace/bidir_subpath.h"
 #include "scene/emitters/emitter.h"
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
 
@@ -23,6 +24,7 @@ PhotonTraceCounters& PhotonTraceCounters::operator+=(const PhotonTraceCounters& 
   rr_terminated += o.rr_terminated;
   null_limit += o.null_limit;
   nan_dropped += o.nan_dropped;
+  grid_flights += o.grid_flights;
   return *this;
 }
 
@@ -34,6 +36,7 @@ void PhotonTraceCounters::flush(core::Stats& stats, const std::string& prefix) c
   stats.add(prefix + ".photon_rr_terminated", rr_terminated);
   stats.add(prefix + ".fail.photon_null_limit", null_limit);
   stats.add(prefix + ".photon_nan_dropped", nan_dropped);
+  if (grid_flights > 0) stats.add(prefix + ".photon_grid_flights", grid_flights);
 }
 
 void grown_bounds_clip(const scene::Scene& scene, const Vec3& o, const Vec3& d, float& t0, float& t1) {
@@ -171,8 +174,14 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
   for (int s = 1; s <= max_store;) {
     if (medium >= 0) {
       const scene::HomogeneousMedium& med = scene.media()[size_t(medium)];
-      const float u_channel = rng.uniform(), u_distance = rng.uniform();
-      const scene::FreeFlightSample ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      scene::FreeFlightSample ff;
+      if (med.heterogeneous()) {  // delta tracking: weight albedo at a scatter, 1 on a pass (grid_tracking.h)
+        ++c.grid_flights;
+        ff = scene::sample_free_flight_grid(med, ray.o, ray.d, found ? hit.t : kInfinity, rng);
+      } else {
+        const float u_channel = rng.uniform(), u_distance = rng.uniform();
+        ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+      }
       if (beams) {
         const size_t before = beams->size();
         tracer_record_beam(scene, med, ray, ff.t, beta, s, medium, after_scatter, *beams, bc);

@@ -13,6 +13,9 @@
 //    sigma_s(x) L(x, w): the in-scattered radiance at x is
 //      sigma_s L_i(x, w_o) ~ 1/N sum_k rho_p(w_k, w_o) beta_k K(x - y_k)   (Eq. 5, D)
 //    with N the emitted paths.
+//    In a grid medium (scene/media/grid_tracking.h) the flight is delta tracking: weight
+//    sigma_s / sigma_t (the albedo) at a scatter, 1 on a pass -- the same expectations.
+//    Beams and planes assume homogeneous media (their integrators refuse grid scenes).
 //  * Surfaces as volpath's walk in reverse: BSDF sampling in importance mode, index-
 //    matched boundaries switch the medium and cost no depth; Russian roulette after
 //    rr_depth segments on beta relative to beta_0.
@@ -104,6 +107,7 @@ struct BeamTraceCounters {
 struct PhotonTraceCounters {
   int64_t paths = 0, stored = 0, surface_events = 0, null_crossings = 0, rr_terminated = 0, null_limit = 0;
   int64_t nan_dropped = 0;  // photons with a non-finite weight, never stored
+  int64_t grid_flights = 0; // free flights in grid media (delta tracking)
   PhotonTraceCounters& operator+=(const PhotonTraceCounters& o);
   void flush(core::Stats& stats, const std::string& prefix) const;
 };

@@ -4,6 +4,7 @@
 
 #include "integrators/media_photons/volume_kernel.h"
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/phase_function.h"
 
 namespace dp::integrators {
@@ -45,6 +46,11 @@ Rgb VpmGather::gather(const Ray& ray, float seg_len, int medium, int max_photon_
   const scene::HenyeyGreenstein phase(med.phase);
   const Vec3 to_camera = -ray.d;
   const int m = m_settings.distance_samples;
+  // A grid medium: sigma_t() is its grey scale (density 1), which shapes p(t) (any density
+  // on the segment will do); Tr(t) from one ratio-tracking profile of the segment.
+  thread_local scene::TransmittanceProfile profile;
+  const bool grid = med.heterogeneous();
+  if (grid) profile.track(med, ray.o, ray.d, seg_len, rng);
   Rgbd sum = Rgbd::Zero();
   for (int j = 0; j < m; ++j) {
     const int c = channels[std::min(int(rng.uniform() * float(n_ch)), n_ch - 1)];
@@ -65,7 +71,9 @@ Rgb VpmGather::gather(const Ray& ray, float seg_len, int medium, int max_photon_
       est += phase.eval(ph.w, to_camera) * ph.beta;  // rho_p at the merged vertex (Eq. 3)
     });
     if (is_black(est)) continue;
-    const Rgb tr = m_settings.fault == VpmFault::no_transmittance ? Rgb::Ones() : scene::transmittance(med, t);
+    const Rgb tr = m_settings.fault == VpmFault::no_transmittance ? Rgb::Ones()
+                   : grid                                          ? Rgb::Constant(profile.at(t))
+                                                                   : scene::transmittance(med, t);
     sum += (tr * est / p).cast<double>();
   }
   const int dim = m_settings.fault == VpmFault::kernel_2d_norm ? 2 : 3;

@@ -21,6 +21,7 @@ class VpmIntegrator final : public Integrator {
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
   bool renders_media() const override { return true; }
+  bool renders_grid_media() const override { return true; }  // photons by delta tracking, Tr by ratio tracking
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

@@ -13,6 +13,8 @@
 // (may be +inf: the box bounds the work).
 #pragma once
 
+#include <vector>
+
 #include "core/math.h"
 #include "core/rng.h"
 #include "scene/media/free_flight.h"
@@ -32,5 +34,23 @@ FreeFlightSample sample_free_flight_grid(const HomogeneousMedium& m, const Vec3&
 // Ratio-tracking estimate of the transmittance over [0, t_max] (grey).
 Rgb transmittance_grid(const HomogeneousMedium& m, const Vec3& o, const Vec3& d, float t_max, core::Rng& rng,
                        GridTrackingFault fault = GridTrackingFault::none);
+
+// Ratio tracking along [0, t_max] kept as a step function of the distance (for the photon
+// density estimators' camera segments, integrators/vpm, integrators/bre): Tr_hat(t) = the
+// product of (1 - sigma_t(x_i) / mu) over the tentative collisions t_i < t. For each t it
+// is exactly ratio tracking stopped at t, so it is unbiased for Tr(t) at every t at once
+// (the estimates at different t are correlated), and by linearity its integral over
+// [a, b] is unbiased for int_a^b Tr (BRE's 3D kernel, Gruson et al. 2018, Sec. 5.1).
+class TransmittanceProfile {
+ public:
+  void track(const HomogeneousMedium& m, const Vec3& o, const Vec3& d, float t_max, core::Rng& rng);
+  float at(float t) const;                 // Tr_hat(t), t >= 0
+  float integral(float a, float b) const;  // int_a^b Tr_hat(t) dt, 0 <= a <= b < inf
+  size_t collisions() const { return m_t.size(); }
+
+ private:
+  std::vector<float> m_t;  // tentative collision distances, ascending
+  std::vector<float> m_v;  // Tr_hat just after each
+};
 
 }  // namespace dp::scene
