@@ -83,6 +83,12 @@ StressReport run_stress(const StressOptions& options) {
           c.skipped = "no media support";
           break;
         }
+        bool grids = false;
+        for (const auto& m : s.scene->media()) grids = grids || m.heterogeneous();
+        if (grids && !integrator->renders_grid_media()) {
+          c.skipped = "no grid media support";
+          break;
+        }
         integrators::RenderOptions opt;
         opt.spp = spp;
         opt.seed = options.seed + uint64_t(v);

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "scene/bsdf/bsdfs.h"
+#include "scene/media/density_grid.h"
 
 namespace dp::experiments {
 
@@ -221,10 +222,56 @@ void media(Builder& b, core::Rng& rng, int res) {
   b.camera(Vec3(0, 1.2f, 3.5f), Vec3(0, 0.5f, -0.3f), 50, res);
 }
 
+// Grid (heterogeneous) media at extreme contrasts: an index-matched smoke ball holding an
+// 8^3 grid of random densities (a third of the cells empty, a few spikes 50x the rest;
+// scale sigma_t log-uniform in 1e-2..30, albedo per channel in [0, 1], some 0, |g| up to
+// 0.99) beside a glass ball filled with a second grid, over a floor; an area and a point
+// light. Only the integrators that render grid media run it (the others are skipped).
+void grid_media(Builder& b, core::Rng& rng, int res) {
+  const int white = b.diffuse(Rgb(0.7f, 0.7f, 0.7f));
+  floor_and_wall(b, white);
+  auto medium = [&](const Vec3& lo, const Vec3& hi) {
+    auto g = std::make_shared<scene::DensityGrid>();
+    g->nx = g->ny = g->nz = 8;
+    g->lo = lo;
+    g->hi = hi;
+    g->values.resize(512);
+    for (float& v : g->values) {
+      const float u = rng.uniform();
+      v = u < 0.33f ? 0.0f : u < 0.36f ? 50.0f * rng.uniform() : rng.uniform();
+    }
+    g->finalize("stress");
+    scene::HomogeneousMedium m;
+    const float st = log_uniform(rng, 1e-2f, 30.0f);
+    for (int c = 0; c < 3; ++c) {
+      const float albedo = rng.uniform() < 0.2f ? 0.0f : rng.uniform();
+      m.sigma_s[c] = st * albedo;
+      m.sigma_a[c] = st - m.sigma_s[c];
+    }
+    m.phase.type = scene::PhaseFunctionDesc::Type::hg;
+    m.phase.g = lerp(-0.99f, 0.99f, rng.uniform());
+    m.density = std::move(g);
+    return b.s.add_medium(m);
+  };
+  const int null = b.s.add_bsdf(scene::make_null(), "none");
+  const Vec3 c(-0.6f, 0.55f, -0.4f);
+  auto smoke = sphere(c, 0.5f, null);
+  smoke->interior_medium = medium(c - Vec3::Constant(0.5f), c + Vec3::Constant(0.5f));
+  b.s.add_shape(std::move(smoke));
+  const Vec3 gc(0.7f, 0.4f, 0.0f);
+  auto glass = sphere(gc, 0.4f, b.s.add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, MicrofacetType::ggx)));
+  glass->interior_medium = medium(gc - Vec3::Constant(0.4f), gc + Vec3::Constant(0.4f));
+  b.s.add_shape(std::move(glass));
+  b.s.add_shape(quad(Vec3(-0.4f, 2.5f, -0.4f), Vec3(0.8f, 0, 0), Vec3(0, 0, 0.8f), -1), Rgb(15, 15, 15));
+  b.s.add_emitter(std::make_unique<scene::PointEmitter>(Vec3(1.0f, 1.5f, 0.8f), Rgb(3, 3, 3)));
+  b.camera(Vec3(0, 1.2f, 3.5f), Vec3(0, 0.5f, -0.3f), 50, res);
+}
+
 }  // namespace
 
 std::vector<std::string> stress_families() {
-  return {"coincident", "grazing", "concave", "tiny_emitter", "huge_emitter", "specular_chain", "roughness", "media"};
+  return {"coincident", "grazing", "concave", "tiny_emitter", "huge_emitter", "specular_chain", "roughness", "media",
+          "grid_media"};
 }
 
 StressScene make_stress_scene(const std::string& family, int variant, uint64_t seed, int resolution) {
@@ -247,7 +294,8 @@ StressScene make_stress_scene(const std::string& family, int variant, uint64_t s
     case 4: huge_emitter(b, rng, resolution); break;
     case 5: specular_chain(b, rng, resolution); out.max_depth = 32; break;
     case 6: roughness(b, rng, resolution); break;
-    default: media(b, rng, resolution); out.max_depth = 16; break;
+    case 7: media(b, rng, resolution); out.max_depth = 16; break;
+    default: grid_media(b, rng, resolution); out.max_depth = 16; break;
   }
   out.scene->commit();
   return out;

@@ -16,6 +16,9 @@
 //   media          homogeneous media from 1e-4 to 1e3 per unit length, |g| up to 0.99,
 //                  nested index-matched boundaries, a filled glass ball, an unbounded fog
 //                  (max_depth 16); integrators without media support ignore them
+//   grid_media     8^3 random density grids (empty cells, 50x spikes, scale 1e-2..30) in
+//                  an index-matched ball and a glass ball (max_depth 16); only the
+//                  integrators that render grid media run it
 #pragma once
 
 #include <cstdint>
