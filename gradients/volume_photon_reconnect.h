@@ -54,8 +54,8 @@ Rgb photon_edge_throughput(const MediumParent& parent, const scene::HomogeneousM
 // can be reconnected:
 //   medium, surface (a smooth lobe was sampled), light (a finite emitter: area, point,
 //   spot) -- reconnectable;
-//   specular (a Dirac lobe was sampled at a surface parent: needs a manifold walk, not
-//   built), light_infinite (environment/directional: the parent is at infinity),
+//   specular (a Dirac lobe was sampled at a surface parent: reconnected by the manifold
+//   walk of volume_photon_chain.h when `chain` >= 0, else the shift fails), light_infinite (environment/directional: the parent is at infinity),
 //   none (no record: the light endpoint could not be re-drawn) -- the shift fails (counted; the same for base and offset, since the light prefix is
 //   not changed by the shift, so the symmetric MIS stays unbiased).
 // An edge may cross index-matched boundaries (straight, media switched):
