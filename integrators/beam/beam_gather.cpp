@@ -41,6 +41,13 @@ Rgbd beam_camera_tr_integral(const scene::HomogeneousMedium& med, double t0, dou
   return out;
 }
 
+// The beam's throughput times its point weight Tr_b(v) / P(v) (1 in a grid medium: see the
+// header) times sigma_s at the point (grid media: scaled by the density there).
+Rgb beam_point_value(const scene::HomogeneousMedium& med, const MediumBeam& beam, double v, BeamFault fault) {
+  if (!med.heterogeneous()) return beam.beta * beam_point_weight(med, float(v), fault) * med.sigma_s;
+  return beam.beta * med.sigma_s * med.density->lookup(beam.a + float(v) * beam.w);
+}
+
 }  // namespace
 
 bool beam_tube_interval(const Vec3& a, const Vec3& w, double v0, double v1, const Vec3& c, const Vec3& w_c, double s,
@@ -77,7 +84,8 @@ bool beam_tube_interval(const Vec3& a, const Vec3& w, double v0, double v1, cons
 }
 
 Rgb beam_beam_3d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,
-                 const Vec3& w_c, float s, float r, float u, BeamFault fault) {
+                 const Vec3& w_c, float s, float r, float u, BeamFault fault,
+                 const scene::TransmittanceProfile* camera_tr) {
   using V = Eigen::Vector3d;
   const V wc = w_c.cast<double>(), wb = beam.w.cast<double>();
   const V q = (beam.a - c).cast<double>();
@@ -95,15 +103,17 @@ Rgb beam_beam_3d(const scene::HomogeneousMedium& med, const MediumBeam& beam, fl
   const double t0 = std::max(0.0, tp - h), t1 = std::min(S, tp + h);
   if (!(t1 > t0)) return Rgb::Zero();
   const Rgbd tr_c = fault == BeamFault::no_camera_transmittance ? Rgbd(Rgbd::Constant(t1 - t0))
-                                                                  : beam_camera_tr_integral(med, t0, t1);
+                    : camera_tr ? Rgbd(Rgbd::Constant(double(camera_tr->integral(float(t0), float(t1)))))
+                                : beam_camera_tr_integral(med, t0, t1);
   const double inv_pdf = fault == BeamFault::no_chord_pdf ? 1.0 : chord;
   const float rho = scene::HenyeyGreenstein(med.phase).eval(beam.w, -w_c);
-  const Rgbd w = (beam.beta * beam_point_weight(med, float(v), fault) * med.sigma_s).cast<double>();
+  const Rgbd w = beam_point_value(med, beam, v, fault).cast<double>();
   return (w * tr_c * (double(rho) * uniform_kernel(3, rr) * inv_pdf)).cast<float>();
 }
 
 Rgb beam_beam_1d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,
-                 const Vec3& w_c, float s, float r, GatherCounters& counters, BeamFault fault) {
+                 const Vec3& w_c, float s, float r, GatherCounters& counters, BeamFault fault,
+                 const scene::TransmittanceProfile* camera_tr) {
   using V = Eigen::Vector3d;
   const V wc = w_c.cast<double>(), wb = beam.w.cast<double>();
   const V w = (beam.a - c).cast<double>();
@@ -123,10 +133,12 @@ Rgb beam_beam_1d(const scene::HomogeneousMedium& med, const MediumBeam& beam, fl
   const double u2 = (w + v * wb - t * wc).squaredNorm();
   if (u2 > double(r) * double(r)) return Rgb::Zero();
   const float rho = scene::HenyeyGreenstein(med.phase).eval(beam.w, -w_c);
-  const Rgb tr_c = fault == BeamFault::no_camera_transmittance ? Rgb(Rgb::Ones()) : scene::transmittance(med, float(t));
+  const Rgb tr_c = fault == BeamFault::no_camera_transmittance ? Rgb(Rgb::Ones())
+                   : camera_tr ? Rgb(Rgb::Constant(camera_tr->at(float(t))))
+                               : scene::transmittance(med, float(t));
   const double k1 = 1.0 / (2.0 * double(r));
   const double jac = fault == BeamFault::no_sin_theta ? 1.0 : 1.0 / std::sqrt(sin2);
-  const Rgb wgt = beam.beta * beam_point_weight(med, float(v), fault) * med.sigma_s * tr_c;
+  const Rgb wgt = beam_point_value(med, beam, v, fault) * tr_c;
   return (wgt.cast<double>() * (double(rho) * k1 * jac)).cast<float>();
 }
 
@@ -143,6 +155,13 @@ Rgb BeamGather::gather(const Ray& ray, float seg_len, int medium, int max_photon
   ++counters.queries;
   if (!(s > 0.0f)) return Rgb::Zero();
   const bool k3 = m_settings.kernel == BeamKernel::k3d;
+  // A grid medium: the camera side's Tr from one ratio-tracking profile of the segment.
+  thread_local scene::TransmittanceProfile profile;
+  const scene::TransmittanceProfile* camera_tr = nullptr;
+  if (med.heterogeneous()) {
+    profile.track(med, ray.o, ray.d, s, rng);
+    camera_tr = &profile;
+  }
   Rgbd sum = Rgbd::Zero();
   m_beams.query_segment(
       ray.o, ray.d, s, m_radius,
@@ -153,8 +172,9 @@ Rgb BeamGather::gather(const Ray& ray, float seg_len, int medium, int max_photon
           return;
         }
         ++counters.candidates;
-        const Rgb v = k3 ? beam_beam_3d(med, b, v0, v1, ray.o, ray.d, s, m_radius, rng.uniform(), m_settings.fault)
-                         : beam_beam_1d(med, b, v0, v1, ray.o, ray.d, s, m_radius, counters, m_settings.fault);
+        const Rgb v = k3 ? beam_beam_3d(med, b, v0, v1, ray.o, ray.d, s, m_radius, rng.uniform(), m_settings.fault,
+                                        camera_tr)
+                         : beam_beam_1d(med, b, v0, v1, ray.o, ray.d, s, m_radius, counters, m_settings.fault, camera_tr);
         if (is_black(v)) return;
         ++counters.photons;
         sum += v.cast<double>();

@@ -61,6 +61,7 @@
 #include "integrators/beam/beam_bvh.h"
 #include "integrators/beam/beam_settings.h"
 #include "integrators/media_photons/media_camera.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/medium.h"
 
 namespace dp::integrators {
@@ -83,10 +84,17 @@ Rgb beam_point_weight(const scene::HomogeneousMedium& med, float v, BeamFault fa
 // draws its beam point uniformly on it.
 bool beam_tube_interval(const Vec3& a, const Vec3& w, double v0, double v1, const Vec3& c, const Vec3& w_c, double s,
                         double r, double& lo, double& hi);
+// Grid media (`camera_tr` required): a delta-tracking free flight passes v with
+// probability P(v) = Tr_b(v) exactly (grey sigma_t), so a short beam's point weight is 1;
+// sigma_s is taken at the beam point (density x the medium's sigma_s), and the camera
+// side's Tr from the segment's ratio-tracking profile (scene/media/grid_tracking.h:
+// unbiased at every t and in its integral over the chord).
 Rgb beam_beam_3d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,
-                 const Vec3& w_c, float s, float r, float u, BeamFault fault = BeamFault::none);
+                 const Vec3& w_c, float s, float r, float u, BeamFault fault = BeamFault::none,
+                 const scene::TransmittanceProfile* camera_tr = nullptr);
 Rgb beam_beam_1d(const scene::HomogeneousMedium& med, const MediumBeam& beam, float v0, float v1, const Vec3& c,
-                 const Vec3& w_c, float s, float r, GatherCounters& counters, BeamFault fault = BeamFault::none);
+                 const Vec3& w_c, float s, float r, GatherCounters& counters, BeamFault fault = BeamFault::none,
+                 const scene::TransmittanceProfile* camera_tr = nullptr);
 
 class BeamGather final : public MediumGather {
  public:

@@ -33,6 +33,7 @@ class BeamIntegrator final : public Integrator {
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
   bool renders_media() const override { return true; }
+  bool renders_grid_media() const override { return true; }  // beams by delta tracking (beam_gather.h)
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

@@ -14,6 +14,7 @@
 #include <functional>
 #include <unistd.h>
 
+#include "integrators/beam/beam_integrator.h"
 #include "integrators/bre/bre_integrator.h"
 #include "integrators/integrator.h"
 #include "integrators/volpath/volpath_integrator.h"
@@ -148,18 +149,28 @@ TEST_CASE("volpath: a constant grid medium renders as the homogeneous one", "[st
                     Catch::Contains("homogeneous media only") && Catch::Contains("volpath"));
 }
 
-// vpm and bre (kernel 3d) on the same pair of scenes: photons by delta tracking, Tr along
-// the camera segments from one ratio-tracking profile each (grid_tracking.h). The kernel
+// vpm, bre (kernel 3d) and beam (Beam-Beam 3D) on the same pair of scenes: photons and
+// beams by delta tracking, Tr along the camera segments from one ratio-tracking profile
+// each (grid_tracking.h). The kernel
 // estimates of both scenes have the same expectation (the photons' density and the camera
 // side's Tr are estimated without bias), so the image mean and the 8x8 blocks agree by
 // Welch tests (Sidak, family-wise 1%; 8 runs x 16 iterations). Planted defect: the gather
-// point's Tr left out (VpmFault::no_transmittance, BreFault::no_transmittance) on the grid
-// scene only -- rejected. The ramp grid renders finite.
-TEST_CASE("vpm and bre: a constant grid medium renders as the homogeneous one", "[stat]") {
+// point's Tr left out (VpmFault::no_transmittance, BreFault::no_transmittance,
+// BeamFault::no_camera_transmittance) on the grid scene only -- rejected. The ramp grid
+// renders finite.
+TEST_CASE("vpm, bre and beam: a constant grid medium renders as the homogeneous one", "[stat]") {
   const GridScenes scenes("vpm_grid");
-  for (const bool bre : {false, true}) {
+  for (const int kind : {0, 1, 2}) {
+    const bool bre = kind == 1;
     auto render = [&](bool fault) -> Render {
       return [=](const scene::Scene& sc, const integrators::RenderOptions& o) {
+        if (kind == 2) {
+          integrators::BeamSettings b;
+          b.photons = 2000;
+          b.radius_scale = 0.01;
+          if (fault) b.fault = integrators::BeamFault::no_camera_transmittance;
+          return integrators::BeamIntegrator(b).render(sc, o);
+        }
         if (bre) {
           integrators::BreSettings b;
           b.photons = 20000;
@@ -176,7 +187,7 @@ TEST_CASE("vpm and bre: a constant grid medium renders as the homogeneous one", 
         return integrators::VpmIntegrator(v).render(sc, o);
       };
     };
-    const char* name = bre ? "bre" : "vpm";
+    const char* name = kind == 2 ? "beam" : bre ? "bre" : "vpm";
     const std::string counter = std::string(name) + ".photon_grid_flights";
     int64_t flights = 0, none = 0;
     const auto ref = runs_of(*scenes.homogeneous, render(false), 500, counter.c_str(), &none);
