@@ -15,49 +15,18 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <unistd.h>
 
 #include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/integrator.h"
 #include "integrators/volpath/volpath_integrator.h"
-#include "scene/loaders/loader.h"
-#include "scene/media/density_grid.h"
+#include "tests/integrators/grid_ball_support.h"
 #include "tests/support/welch.h"
 
 using namespace dp;
-namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kRes = 32, kBlock = 8, kRuns = 16, kSpp = 32;
-
-std::string scene_text(const std::string& medium) {
-  return "version: 1\n"
-         "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, 0], fov: 40, resolution: [32, 32]}\n"
-         "materials: {floor: {type: diffuse, albedo: [0.7, 0.7, 0.7]}}\n"
-         "media:\n  smoke: " + medium + "\n"
-         "shapes:\n"
-         "  - {type: quad, vertices: [[-4, -1, -4], [-4, -1, 4], [4, -1, 4], [4, -1, -4]], material: floor}\n"
-         "  - {type: sphere, center: [0, 0, 0], radius: 1, material: none, interior: smoke}\n"
-         "lights: [{type: environment, radiance: [1, 1, 1]}]\n";
-}
-
-// The image mean, then the 8x8-block means (of the channel sums).
-std::vector<double> blocks(const core::Image& img) {
-  std::vector<double> out;
-  double total = 0;
-  for (const auto& p : img.pixels()) total += double(p.sum());
-  out.push_back(total / double(img.size()));
-  for (int by = 0; by < kRes / kBlock; ++by)
-    for (int bx = 0; bx < kRes / kBlock; ++bx) {
-      double s = 0;
-      for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
-        for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) s += double(img(x, y).sum());
-      out.push_back(s / (kBlock * kBlock));
-    }
-  return out;
-}
+constexpr int kBlock = 8, kRuns = 16, kSpp = 32;
 
 struct Runs {
   std::vector<std::vector<double>> stats;  // [statistic][run]
@@ -86,39 +55,20 @@ Runs runs(const scene::Scene& s, pathspace::BidirFault fault, uint64_t seed0, bo
       r.ratio_tracking += res.stats.get("bdpt.ratio_tracking");
     }
     r.seconds += res.wall_seconds;
-    const auto b = blocks(res.layers[0].image);
+    const auto b = test::image_blocks(res.layers[0].image, kBlock);
     if (r.stats.empty()) r.stats.resize(b.size());
     for (size_t i = 0; i < b.size(); ++i) r.stats[i].push_back(b[i]);
   }
   return r;
 }
 
-void write_grid(const fs::path& file, bool ramp) {
-  scene::DensityGrid g;
-  g.nx = g.ny = g.nz = 4;
-  g.lo = Vec3(-1.2f, -1.2f, -1.2f);
-  g.hi = Vec3(1.2f, 1.2f, 1.2f);
-  for (int z = 0; z < 4; ++z)
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) g.values.push_back(ramp ? float(x) : 1.0f);
-  g.finalize("test");
-  scene::write_vol_file(file.string(), g);
-}
-
 }  // namespace
 
 TEST_CASE("bdpt: a grid medium renders as the homogeneous one and as volpath renders it", "[stat]") {
-  const fs::path dir = fs::temp_directory_path() / ("dp_bdpt_grid_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  write_grid(dir / "one.vol", false);
-  write_grid(dir / "ramp.vol", true);
-  const std::string path = (dir / "s.yaml").string();
-  const auto homogeneous = scene::load_scene_yaml_string(
-      scene_text("{type: homogeneous, sigma_a: [0.2, 0.6, 1.0], sigma_s: [1.8, 1.4, 1.0], phase: {type: hg, g: 0.3}}"), path);
-  const auto grid = scene::load_scene_yaml_string(
-      scene_text("{type: grid, file: one.vol, sigma_t: 2, albedo: [0.9, 0.7, 0.5], phase: {type: hg, g: 0.3}}"), path);
-  const auto ramp = scene::load_scene_yaml_string(
-      scene_text("{type: grid, file: ramp.vol, sigma_t: 2, albedo: [0.9, 0.7, 0.5], phase: {type: hg, g: 0.3}}"), path);
+  const test::GridBallScenes scenes("bdpt_grid");
+  const auto& homogeneous = scenes.homogeneous;
+  const auto& grid = scenes.grid;
+  const auto& ramp = scenes.ramp;
   REQUIRE(grid->media()[0].heterogeneous());
   REQUIRE(ramp->media()[0].heterogeneous());
   integrators::Settings settings;
@@ -155,5 +105,4 @@ TEST_CASE("bdpt: a grid medium renders as the homogeneous one and as volpath ren
               ramp_ratio, ramp_bad_ratio);
   CHECK(ramp_ratio < 1.0);
   CHECK(ramp_bad_ratio > 1.0);
-  fs::remove_all(dir);
 }

@@ -21,6 +21,7 @@
 #include "integrators/vpm/vpm_integrator.h"
 #include "scene/loaders/loader.h"
 #include "scene/media/density_grid.h"
+#include "tests/integrators/grid_ball_support.h"
 #include "tests/support/welch.h"
 
 using namespace dp;
@@ -28,33 +29,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kRes = 32, kBlock = 8, kRuns = 8, kSpp = 16;
+constexpr int kBlock = 8, kRuns = 8, kSpp = 16;
 
-std::string scene_text(const std::string& medium) {
-  return "version: 1\n"
-         "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, 0], fov: 40, resolution: [32, 32]}\n"
-         "materials: {floor: {type: diffuse, albedo: [0.7, 0.7, 0.7]}}\n"
-         "media:\n  smoke: " + medium + "\n"
-         "shapes:\n"
-         "  - {type: quad, vertices: [[-4, -1, -4], [-4, -1, 4], [4, -1, 4], [4, -1, -4]], material: floor}\n"
-         "  - {type: sphere, center: [0, 0, 0], radius: 1, material: none, interior: smoke}\n"
-         "lights: [{type: environment, radiance: [1, 1, 1]}]\n";
-}
 
-std::vector<double> blocks(const core::Image& img) {
-  std::vector<double> out;
-  double total = 0;
-  for (const auto& p : img.pixels()) total += double(p.sum());
-  out.push_back(total / double(img.size()));
-  for (int by = 0; by < kRes / kBlock; ++by)
-    for (int bx = 0; bx < kRes / kBlock; ++bx) {
-      double s = 0;
-      for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
-        for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) s += double(img(x, y).sum());
-      out.push_back(s / (kBlock * kBlock));
-    }
-  return out;
-}
 
 using Render = std::function<integrators::RenderResult(const scene::Scene&, const integrators::RenderOptions&)>;
 
@@ -72,7 +49,7 @@ std::vector<std::vector<double>> runs_of(const scene::Scene& s, const Render& re
     opt.quiet = true;
     const auto res = render(s, opt);
     if (count) *count += res.stats.get(counter);
-    const auto b = blocks(res.layers[0].image);
+    const auto b = test::image_blocks(res.layers[0].image, kBlock);
     if (r.empty()) r.resize(b.size());
     for (size_t i = 0; i < b.size(); ++i) r[i].push_back(b[i]);
   }
@@ -88,41 +65,11 @@ std::vector<std::vector<double>> runs(const scene::Scene& s, integrators::Volpat
   }, seed0, "volpath.grid_flights", grid_flights);
 }
 
-// The three scenes of the tests (the .vol files in a temporary folder, removed after).
-struct GridScenes {
-  fs::path dir;
-  std::unique_ptr<scene::Scene> homogeneous, grid, ramp;
-  explicit GridScenes(const std::string& tag) {
-    dir = fs::temp_directory_path() / ("dp_" + tag + "_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    scene::DensityGrid g;
-    g.nx = g.ny = g.nz = 4;
-    g.lo = Vec3(-1.2f, -1.2f, -1.2f);
-    g.hi = Vec3(1.2f, 1.2f, 1.2f);
-    g.values.assign(64, 1.0f);
-    g.finalize("test");
-    scene::write_vol_file((dir / "one.vol").string(), g);
-    for (int z = 0; z < 4; ++z)  // a ramp along x from 0 to 3
-      for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) g.values[size_t((z * 4 + y) * 4 + x)] = float(x);
-    g.finalize("test");
-    scene::write_vol_file((dir / "ramp.vol").string(), g);
-    const std::string path = (dir / "s.yaml").string();
-    homogeneous = scene::load_scene_yaml_string(
-        scene_text("{type: homogeneous, sigma_a: [0.2, 0.6, 1.0], sigma_s: [1.8, 1.4, 1.0], phase: {type: hg, g: 0.3}}"),
-        path);
-    grid = scene::load_scene_yaml_string(
-        scene_text("{type: grid, file: one.vol, sigma_t: 2, albedo: [0.9, 0.7, 0.5], phase: {type: hg, g: 0.3}}"), path);
-    ramp = scene::load_scene_yaml_string(scene_text("{type: grid, file: ramp.vol, sigma_t: 2, albedo: [0.9, 0.7, 0.5]}"),
-                                         path);
-  }
-  ~GridScenes() { fs::remove_all(dir); }
-};
 
 }  // namespace
 
 TEST_CASE("volpath: a constant grid medium renders as the homogeneous one", "[stat]") {
-  const GridScenes scenes("volpath_grid");
+  const test::GridBallScenes scenes("volpath_grid");
   const scene::Scene &homogeneous = *scenes.homogeneous, &grid = *scenes.grid, &ramp = *scenes.ramp;
   REQUIRE(grid.media()[0].heterogeneous());
   const auto ref = runs(homogeneous, integrators::VolpathFault::none, 100);
@@ -159,7 +106,7 @@ TEST_CASE("volpath: a constant grid medium renders as the homogeneous one", "[st
 // BeamFault::no_camera_transmittance) on the grid scene only -- rejected. The ramp grid
 // renders finite.
 TEST_CASE("vpm, bre and beam: a constant grid medium renders as the homogeneous one", "[stat]") {
-  const GridScenes scenes("vpm_grid");
+  const test::GridBallScenes scenes("vpm_grid");
   for (const int kind : {0, 1, 2}) {
     const bool bre = kind == 1;
     auto render = [&](bool fault) -> Render {
