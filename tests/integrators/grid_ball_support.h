@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "integrators/integrator.h"
 #include "scene/loaders/loader.h"
 #include "scene/media/density_grid.h"
 
@@ -75,5 +76,16 @@ struct GridBallScenes {
   }
   ~GridBallScenes() { std::filesystem::remove_all(dir); }
 };
+ 
+// The render options of these tests: spp, seed, 2 threads, max_depth 8, quiet.
+inline integrators::RenderOptions grid_render_options(int spp, uint64_t seed) {
+  integrators::RenderOptions opt;
+  opt.spp = spp;
+  opt.seed = seed;
+  opt.threads = 2;
+  opt.max_depth = 8;
+  opt.quiet = true;
+  return opt;
+}
 
 }  // namespace dp::test

@@ -38,12 +38,7 @@ struct Runs {
 Runs runs(const scene::Scene& s, pathspace::BidirFault fault, uint64_t seed0, bool volpath = false) {
   Runs r;
   for (int k = 0; k < kRuns; ++k) {
-    integrators::RenderOptions opt;
-    opt.spp = kSpp;
-    opt.seed = seed0 + uint64_t(k);
-    opt.threads = 2;
-    opt.max_depth = 8;
-    opt.quiet = true;
+    const integrators::RenderOptions opt = test::grid_render_options(kSpp, seed0 + uint64_t(k));
     integrators::RenderResult res;
     if (volpath) {
       res = integrators::VolpathIntegrator(integrators::VolpathSettings{}).render(s, opt);

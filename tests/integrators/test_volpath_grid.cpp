@@ -41,12 +41,7 @@ std::vector<std::vector<double>> runs_of(const scene::Scene& s, const Render& re
                                          const char* counter = nullptr, int64_t* count = nullptr) {
   std::vector<std::vector<double>> r;
   for (int k = 0; k < kRuns; ++k) {
-    integrators::RenderOptions opt;
-    opt.spp = kSpp;
-    opt.seed = seed0 + uint64_t(k);
-    opt.threads = 2;
-    opt.max_depth = 8;
-    opt.quiet = true;
+    const integrators::RenderOptions opt = test::grid_render_options(kSpp, seed0 + uint64_t(k));
     const auto res = render(s, opt);
     if (count) *count += res.stats.get(counter);
     const auto b = test::image_blocks(res.layers[0].image, kBlock);

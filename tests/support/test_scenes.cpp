@@ -57,14 +57,23 @@ std::unique_ptr<scene::Scene> furnace_sphere(float albedo, float emission, float
   return finish(std::move(s), Vec3(0.1f, 0.2f, 0.3f), Vec3(0.5f, 0.1f, -1.0f), 90.0f, resolution);
 }
 
-std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution) {
+// The white box with a red wall and the ceiling light facing down, slightly below the
+// ceiling (lit_box, media_box, grid_media_box); `white`: the walls' BSDF index.
+namespace {
+std::unique_ptr<scene::Scene> lit_box_shell(int& white) {
   auto s = std::make_unique<scene::Scene>();
-  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
+  white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
   const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
   add_box(*s, {white, white, red, white, white, white});
-  // Ceiling light facing down, slightly below the ceiling.
   auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
   s->add_shape(std::move(light), Rgb(8, 8, 8));
+  return s;
+}
+}  // namespace
+
+std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sphere_b, int resolution) {
+  int white = -1;
+  auto s = lit_box_shell(white);
   auto sa = std::make_unique<scene::Sphere>(Vec3(-0.45f, -0.6f, -0.2f), 0.4f);
   sa->material = sphere_a ? s->add_bsdf(sphere_a) : white;
   s->add_shape(std::move(sa));
@@ -154,12 +163,8 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
 }
 
 std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_ball) {
-  auto s = std::make_unique<scene::Scene>();
-  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
-  const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
-  add_box(*s, {white, white, red, white, white, white});
-  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
-  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  int white = -1;
+  auto s = lit_box_shell(white);
   auto smoke = std::make_unique<scene::Sphere>(Vec3(-0.45f, -0.6f, -0.2f), 0.4f);
   smoke->material = s->add_bsdf(scene::make_null(), "none");
   smoke->interior_medium = s->add_medium(make_medium(Rgb::Constant(0.2f), Rgb(1.5f, 2.5f, 3.5f), 0.5f));
@@ -186,12 +191,8 @@ scene::HomogeneousMedium grid_medium(const scene::DensityGrid& g, float sigma_t,
 }  // namespace
 
 std::unique_ptr<scene::Scene> grid_media_box(int resolution) {
-  auto s = std::make_unique<scene::Scene>();
-  const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
-  const int red = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.1f, 0.1f)))));
-  add_box(*s, {white, white, red, white, white, white});
-  auto light = quad(Vec3(-0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, -0.3f), Vec3(0.3f, 0.98f, 0.3f), Vec3(-0.3f, 0.98f, 0.3f));
-  s->add_shape(std::move(light), Rgb(8, 8, 8));
+  int white = -1;
+  auto s = lit_box_shell(white);
   const Vec3 c(-0.45f, -0.6f, -0.2f);
   scene::DensityGrid ramp;
   ramp.nx = ramp.ny = ramp.nz = 3;
