@@ -5,6 +5,7 @@
 #include "gradients/volume_path_shift.h"
 #include "integrators/gpt/gpt_splat.h"
 #include "pathspace/classify.h"
+#include "pathspace/scatter.h"
 
 namespace dp::integrators {
 

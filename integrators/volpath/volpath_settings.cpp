@@ -11,7 +11,24 @@ VolpathSettings VolpathSettings::read(Settings& s) {
                      "next-event estimation at surface and medium vertices, transmittance along the shadow ray, "
                      "power-heuristic MIS with BSDF/phase sampling (false: BSDF and phase sampling only)");
   v.hide_emitters = s.get_bool("hide_emitters", v.hide_emitters, "do not show emitters seen directly by the camera");
+  v.mnee = s.get_bool("mnee", v.mnee,
+                      "manifold next-event estimation: light seen through refractive surfaces (glass) is sampled "
+                      "by a manifold walk from medium and surface vertices, MIS-weighted with BSDF/phase sampling "
+                      "(scenes with media, area lights; Hanika et al. 2015)");
+  v.mnee_max_chain = s.get_int("mnee_max_chain", v.mnee_max_chain,
+                               "most refractive boundaries between a vertex and the light that MNEE solves for");
+  v.mnee_reflections = s.get_bool("mnee_reflections", v.mnee_reflections,
+                                  "MNEE also solves one reflection off each purely specular shape (scenes with at most "
+                                  "4 of them)");
+  v.mnee_seeds = s.get_int("mnee_seeds", v.mnee_seeds,
+                            "seed directions per MNEE connection: the straight line, then pairs across the first "
+                            "refracting shape; every distinct solution found is added");
+  v.mnee_iterations = s.get_int("mnee_iterations", v.mnee_iterations, "Newton steps of an MNEE manifold walk");
   if (v.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
+  if (v.mnee_max_chain < 1 || v.mnee_max_chain > 8)
+    throw ValueError("setting 'mnee_max_chain' must be in 1 .. 8", "--set");
+  if (v.mnee_seeds < 1 || v.mnee_seeds > 9) throw ValueError("setting 'mnee_seeds' must be in 1 .. 9", "--set");
+  if (v.mnee_iterations < 1) throw ValueError("setting 'mnee_iterations' must be >= 1", "--set");
   return v;
 }
 

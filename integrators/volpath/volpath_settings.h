@@ -17,12 +17,19 @@ enum class VolpathFault : uint8_t {
   nee_without_transmittance,  // NEE ignores the medium's transmittance along the shadow ray
   pass_without_probability,   // a segment passing the medium weighted Tr, not Tr / P(pass)
   medium_nee_without_mis,     // NEE at medium vertices weighted 1 (phase sampling still MIS-weighted)
+  mnee_without_mis,           // MNEE and the paths it can also sample both weighted 1 (counted twice)
+  mnee_planar_geometry,       // MNEE's D = 1 / |y - s_m|^2, the unrefracted last segment's
 };
 
 struct VolpathSettings {
   int rr_depth = 5;     // Russian roulette starts after this many segments
   bool nee = true;      // next-event estimation (light sampling) with MIS, at surface and medium vertices
   bool hide_emitters = false;  // drop directly visible emitters (depth 1)
+  bool mnee = true;            // manifold NEE through refractive surfaces (volpath_mnee.h; scenes with media)
+  int mnee_max_chain = 4;      // most refractions MNEE solves for (1 .. kMaxMneeChain)
+  bool mnee_reflections = false;  // MNEE also through one reflection off each specular shape (at most 4 shapes)
+  int mnee_seeds = 5;          // seed directions per connection (1: the straight line only; <= kMaxMneeSeeds)
+  int mnee_iterations = 20;    // Newton steps of MNEE's manifold walk (Jakob & Marschner 2012)
   VolpathFault fault = VolpathFault::none;  // tests only, never read from settings
 
   static VolpathSettings read(Settings& s);

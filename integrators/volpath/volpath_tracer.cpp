@@ -28,6 +28,17 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.fail.null_limit", null_limit);
   stats.add("volpath.media_skipped", media_skipped);
   stats.add("volpath.grid_flights", grid_flights);
+  stats.add("volpath.mnee.attempts", mnee_attempts);
+  stats.add("volpath.mnee.chains", mnee_chains);
+  stats.add("volpath.mnee.reflection_attempts", mnee_reflection_attempts);
+  stats.add("volpath.mnee.fail.seed", mnee_seed_failed);
+  stats.add("volpath.mnee.fail.walk", mnee_walk_failed);
+  stats.add("volpath.mnee.fail.occluded", mnee_occluded);
+  stats.add("volpath.mnee.connections", mnee_connections);
+  stats.add("volpath.mnee.bsdf_hits", mnee_bsdf_hits);
+  stats.add("volpath.mnee.bsdf_matched", mnee_bsdf_matched);
+  if (mnee_walks.attempted > 0) mnee_walks.flush(stats, "volpath.mnee.walk");
+  if (mnee_seeds.attempted > 0) mnee_seeds.flush(stats, "volpath.mnee.seed");
 }
 
 namespace {
@@ -51,11 +62,24 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
       m_settings(settings),
       m_max_depth(max_depth),
       m_has_media(scene.caps().has_media),
-      m_camera_medium(scene.camera_medium()) {}
+      m_camera_medium(scene.camera_medium()),
+      m_mnee(false) {
+  if (!m_has_media || !settings.mnee || !settings.nee) return;
+  for (const auto& b : scene.bsdfs())
+    if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaTransmission) != 0) m_mnee = true;
+  if (!settings.mnee_reflections) return;
+  for (size_t i = 0; i < scene.shapes().size(); ++i) {
+    const int mat = scene.shapes()[i]->material;
+    const scene::Bsdf* b = mat >= 0 ? scene.bsdfs()[size_t(mat)].get() : nullptr;
+    if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaReflection) != 0) m_reflectors.push_back(int(i));
+  }
+  if (m_reflectors.size() > size_t(kMaxMneeReflectors)) m_reflectors.clear();
+  if (!m_reflectors.empty()) m_mnee = true;
+}
 
-Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& c) const {
-  Rgb tr = Rgb::Ones();
-  SurfaceHit h;
+VolpathTracer::MarchEnd VolpathTracer::march(Ray r, int& medium, const Vec3* target, core::Rng& rng,
+                                             VolpathCounters& c, Rgb& tr, SurfaceHit& h) const {
+  tr = Rgb::Ones();
   for (int crossings = 0;; ++crossings) {
     const bool found = m_scene.intersect(r, h);
     // Beer-Lambert over the part of the segment inside this medium (Gruson et al. 2018,
@@ -66,22 +90,28 @@ Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, c
       const float len = found ? h.t : r.tmax;
       tr *= med.heterogeneous() ? scene::transmittance_grid(med, r.o, r.d, len, rng) : scene::transmittance(med, len);
     }
-    if (!found) return tr;
-    if (!scene::is_index_matched(h)) return Rgb::Zero();  // an opaque or refractive surface blocks it
+    if (!found) return MarchEnd::reached;
+    if (!scene::is_index_matched(h)) return MarchEnd::surface;  // an opaque or refractive surface
     if (crossings >= kMaxNullCrossings) {
       ++c.null_limit;
-      return Rgb::Zero();
+      return MarchEnd::limit;
     }
     ++c.shadow_null_crossings;
-    if (is_black(tr)) return tr;
+    if (is_black(tr)) return MarchEnd::reached;
     medium = scene::medium_toward(h, r.d, medium, m_camera_medium);
     r = target ? m_scene.spawn_segment(h, *target) : m_scene.spawn_ray(h, r.d);
   }
 }
 
+Rgb VolpathTracer::shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& c) const {
+  Rgb tr;
+  SurfaceHit h;
+  return march(r, medium, target, rng, c, tr, h) == MarchEnd::reached ? tr : Rgb::Zero();
+}
+
 template <bool kMedia>
 Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_local, const BsdfContext& ctx, int medium,
-                                      core::Rng& rng, VolpathCounters& c) const {
+                                      core::Rng& rng, VolpathCounters& c, NeeProbe* probe) const {
   const float u_light = rng.uniform();
   const Vec2 u = rng.uniform2();
   float pmf;
@@ -89,6 +119,8 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
   if (!emitter) return Rgb::Zero();
   const scene::DirectSample ds = emitter->sample_direct(hit.p, u);
   if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
+  // MNEE may refract where the straight direction has no contribution.
+  if (probe && !ds.delta && std::isfinite(ds.dist)) *probe = NeeProbe{true, ds.p, ds.n, true};
   const Vec3 wo_local = hit.shading.to_local(ds.wi);
   if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
   float bsdf_pdf;  // pdf of sampling wo by the BSDF, for the MIS weight
@@ -99,9 +131,11 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
   const Ray r = finite ? m_scene.spawn_segment(hit, ds.p) : m_scene.spawn_ray(hit, ds.wi);
   Rgb tr = Rgb::Ones();
   if constexpr (kMedia) {
-    const int light_side = scene::medium_toward(hit, ds.wi, medium, m_camera_medium);
-    tr = shadow_transmittance(r, light_side, finite ? &ds.p : nullptr, rng, c);
-    if (is_black(tr)) return Rgb::Zero();
+    int light_side = scene::medium_toward(hit, ds.wi, medium, m_camera_medium);
+    SurfaceHit blocker;
+    const MarchEnd end = march(r, light_side, finite ? &ds.p : nullptr, rng, c, tr, blocker);
+    if (probe) probe->try_chain = end == MarchEnd::surface && mnee_refracts(blocker);
+    if (end != MarchEnd::reached || is_black(tr)) return Rgb::Zero();
   } else {
     (void)medium;
     if (m_scene.occluded(r)) return Rgb::Zero();
@@ -112,12 +146,12 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
 }
 
 template Rgb VolpathTracer::next_event_surface<true>(const SurfaceHit&, const Vec3&, const BsdfContext&, int,
-                                                     core::Rng&, VolpathCounters&) const;
+                                                     core::Rng&, VolpathCounters&, NeeProbe*) const;
 template Rgb VolpathTracer::next_event_surface<false>(const SurfaceHit&, const Vec3&, const BsdfContext&, int,
-                                                      core::Rng&, VolpathCounters&) const;
+                                                      core::Rng&, VolpathCounters&, NeeProbe*) const;
 
-Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng,
-                                     VolpathCounters& c) const {
+Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng, VolpathCounters& c,
+                                     NeeProbe* probe) const {
   const float u_light = rng.uniform();
   const Vec2 u = rng.uniform2();
   float pmf;
@@ -125,6 +159,7 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   if (!emitter) return Rgb::Zero();
   const scene::DirectSample ds = emitter->sample_direct(p, u);
   if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
+  if (probe && !ds.delta && std::isfinite(ds.dist)) *probe = NeeProbe{true, ds.p, ds.n, true};
   // The medium vertex's rho = sigma_s * rho_p (Gruson et al. 2018, Eq. 3); sigma_s is
   // already in the throughput (free-flight weight), G has no cosines here (Eq. 4).
   const float phase = scene::HenyeyGreenstein(m_scene.media()[size_t(medium)].phase).eval(d, ds.wi);
@@ -137,8 +172,11 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   const bool finite = std::isfinite(ds.dist);
   r.tmax = finite ? std::max(0.0f, ds.dist - 2.0f * scene::Scene::epsilon_at(ds.p))
                   : kInfinity;
-  const Rgb tr = shadow_transmittance(r, medium, finite ? &ds.p : nullptr, rng, c);
-  if (is_black(tr)) return Rgb::Zero();
+  Rgb tr;
+  SurfaceHit blocker;
+  const MarchEnd end = march(r, medium, finite ? &ds.p : nullptr, rng, c, tr, blocker);
+  if (probe) probe->try_chain = end == MarchEnd::surface && mnee_refracts(blocker);
+  if (end != MarchEnd::reached || is_black(tr)) return Rgb::Zero();
   const float light_pdf = pmf * ds.pdf;
   const bool no_mis = ds.delta || m_settings.fault == VolpathFault::medium_nee_without_mis;
   const float weight = no_mis ? 1.0f : power_heuristic(light_pdf, phase);  // phase pdf == phase value
@@ -160,6 +198,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
   // After a surface vertex (or an index-matched crossing) the path continues by the one
   // rule of every integrator and shift, Scene::trace_from; ray.o is then that vertex.
   bool from_surface = false;
+  ChainTrack chain;  // MNEE's view of the path since its last non-specular vertex
   for (int depth = 1; depth <= m_max_depth;) {
     const bool found = from_surface ? m_scene.trace_from(hit, ray.d, hit) : m_scene.intersect(ray, hit);
     ++c.rays;
@@ -182,7 +221,20 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           ++c.medium_scatter;
           if (depth == m_max_depth || is_black(beta)) break;
           const Vec3 p = ray.at(ff.t);
-          if (m_settings.nee) L += beta * next_event_medium(p, ray.d, medium, rng, c);
+          if (m_mnee) {  // NEE, then MNEE with its light sample (volpath_mnee.h)
+            NeeProbe probe;
+            L += beta * next_event_medium(p, ray.d, medium, rng, c, &probe);
+            chain.active = true;
+            chain.m = 0;
+            chain.anchor.surface = false;
+            chain.anchor.p = p;
+            chain.anchor.d_in = ray.d;
+            chain.anchor.medium = medium;
+            chain.anchor.depth = depth;
+            if (probe.area_light) L += beta * mnee_nee(chain.anchor, probe, rng, c);
+          } else if (m_settings.nee) {
+            L += beta * next_event_medium(p, ray.d, medium, rng, c);
+          }
           const scene::HenyeyGreenstein phase(med.phase);
           const Vec3 wo = phase.sample(ray.d, rng.uniform2());
           // Phase sampling is exact: the weight rho_p / pdf is 1, beta is unchanged.
@@ -220,6 +272,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
         if (!prev_delta && m_settings.nee) {
           const float light_pdf = m_scene.emitter_pmf(hit.emitter) * hit.emitter->pdf_direct(prev_p, hit.p, hit.ng, ray.d);
           w = power_heuristic(prev_pdf, light_pdf);
+        } else if (kMedia && m_mnee && chain.active && chain.m > 0) {
+          w = mnee_bsdf_weight(chain, hit, rng, c);
         }
         L += beta * Le * w;
       }
@@ -242,8 +296,19 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (!consistent_side(hit, -ray.d, wi_local.z())) break;
     ++c.surface_events;
     const BsdfContext ctx{hit.uv, scene::TransportMode::radiance};
-    if (m_settings.nee && !hit.bsdf->is_purely_delta())
-      L += beta * next_event_surface<kMedia>(hit, wi_local, ctx, medium, rng, c);
+    if (m_settings.nee && !hit.bsdf->is_purely_delta()) {
+      NeeProbe probe;
+      L += beta * next_event_surface<kMedia>(hit, wi_local, ctx, medium, rng, c, kMedia && m_mnee ? &probe : nullptr);
+      if (kMedia && probe.area_light) {  // MNEE with NEE's light sample (volpath_mnee.h)
+        MneeAnchor x;
+        x.surface = true;
+        x.hit = hit;
+        x.wi_local = wi_local;
+        x.medium = medium;
+        x.depth = depth;
+        L += beta * mnee_nee(x, probe, rng, c);
+      }
+    }
 
     const float u_lobe = rng.uniform();
     const Vec2 u = rng.uniform2();
@@ -251,6 +316,24 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (!bs || is_black(bs->weight)) break;
     const Vec3 wo = hit.shading.to_world(bs->wo);
     if (!consistent_side(hit, wo, bs->wo.z())) break;
+    if (kMedia && m_mnee) {  // the anchor x, or one more refraction after it (volpath_mnee.h)
+      if (!bs->is_delta()) {
+        chain.active = true;
+        chain.m = 0;
+        chain.anchor.surface = true;
+        chain.anchor.hit = hit;
+        chain.anchor.wi_local = wi_local;
+        chain.anchor.medium = medium;
+        chain.anchor.depth = depth;
+        chain.reflect_mask = 0;
+      } else if (chain.active && chain.m < kMaxMneeChain &&
+                 (bs->lobe == scene::kDeltaReflection || (bs->lobe == scene::kDeltaTransmission && bs->eta != 1.0f))) {
+        if (bs->lobe == scene::kDeltaReflection) chain.reflect_mask |= 1u << chain.m;
+        chain.verts[size_t(chain.m++)] = hit.p;
+      } else {
+        chain.active = false;
+      }
+    }
     beta *= bs->weight;
     prev_delta = bs->is_delta();
     prev_pdf = bs->pdf;

@@ -27,7 +27,9 @@
 
 #include "core/rng.h"
 #include "core/stats.h"
+#include "integrators/volpath/volpath_mnee.h"
 #include "integrators/volpath/volpath_settings.h"
+#include "manifold/walk_stats.h"
 #include "scene/scene.h"
 
 namespace dp::integrators {
@@ -43,6 +45,18 @@ struct VolpathCounters {
   int64_t null_limit = 0;              // paths or shadow rays cut after kMaxNullCrossings boundaries
   int64_t media_skipped = 0;           // paths traced without any medium code (scene without media)
   int64_t grid_flights = 0;            // free flights by delta tracking (grid media)
+  // Manifold NEE (volpath_mnee.h).
+  int64_t mnee_attempts = 0;     // light samples whose straight segment a refractive surface blocks
+  int64_t mnee_reflection_attempts = 0;  // reflection chains tried (per specular shape)
+  int64_t mnee_chains = 0;       // ... blocked by refractive surfaces only (a chain to solve)
+  int64_t mnee_seed_failed = 0;  // the refracted seed missed a boundary or the light's plane
+  int64_t mnee_walk_failed = 0;  // the manifold walk did not reach y
+  int64_t mnee_occluded = 0;     // the solved chain is blocked, or its lobes do not follow it
+  int64_t mnee_connections = 0;  // contributions added
+  int64_t mnee_bsdf_hits = 0;    // BSDF/phase paths reaching a light through refractions only
+  int64_t mnee_bsdf_matched = 0; // ... that MNEE also returns (weighted by MIS, else 1)
+  manifold::WalkStats mnee_walks;  // MNEE's manifold walks (volpath.mnee.walk.*)
+  manifold::WalkStats mnee_seeds;  // its seeds' exact re-traces (volpath.mnee.seed.*)
   void flush(core::Stats& stats) const;
 };
 
@@ -60,16 +74,52 @@ class VolpathTracer {
   // NEE at a surface vertex in medium `medium` (the medium on the light's side is found
   // from the sampled direction).
   template <bool kMedia>
+  // `probe` (volpath's own tracer) receives the light point and whether MNEE may apply.
   Rgb next_event_surface(const scene::SurfaceHit& hit, const Vec3& wi_local, const scene::BsdfContext& ctx,
-                         int medium, core::Rng& rng, VolpathCounters& counters) const;
+                         int medium, core::Rng& rng, VolpathCounters& counters, NeeProbe* probe = nullptr) const;
   // NEE at a medium vertex p of medium `medium`, reached along direction d.
-  Rgb next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng, VolpathCounters& counters) const;
+  Rgb next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng, VolpathCounters& counters,
+                        NeeProbe* probe = nullptr) const;
   // Transmittance of the shadow ray `r` that starts in `medium` (through index-matched
   // boundaries up to r.tmax); 0 if a surface blocks it. `target`: the light point, or
   // nullptr for a light at infinity.
   Rgb shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& counters) const;
 
+  // The MNEE solutions X(x, y) from anchor x to the light point y (normal n_y), at most
+  // `max_chain` refractions (volpath_mnee.h; volpath_mnee.cpp).
+  // refraction_hint false: the straight segment is known not to be blocked by a
+  // refractive surface first (reflection chains only).
+  MneeSolutions mnee_connect(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int max_chain, bool refraction_hint,
+                             core::Rng& rng, VolpathCounters& counters) const;
+
  private:
+  // Where a marched ray ended: r.tmax or no surface (reached), the first surface that is not
+  // an index-matched boundary (surface; `stop`), or the crossing limit.
+  enum class MarchEnd : uint8_t { reached, surface, limit };
+  // Transmittance of `r` (starting in `medium`, updated at each index-matched crossing).
+  MarchEnd march(Ray r, int& medium, const Vec3* target, core::Rng& rng, VolpathCounters& counters, Rgb& tr,
+                 scene::SurfaceHit& stop) const;
+  // The MIS weight of a BSDF/phase path that reached the light `hit` through the
+  // refractions `chain` after the anchor x (volpath_mnee.h, "The BSDF side").
+  struct ChainTrack {
+    bool active = false;
+    MneeAnchor anchor;
+    int m = 0;
+    uint32_t reflect_mask = 0;
+    std::array<Vec3, kMaxMneeChain> verts{};
+  };
+  // One seed direction d's solution of a chain of m Dirac vertices (bit i of `mask`: vertex
+  // i + 1 reflects, else refracts), all on `shape` unless it is -1.
+  MneeConnection mnee_solve(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,
+                            const Vec3& d, core::Rng& rng, VolpathCounters& counters) const;
+  // Calls f(direction) for MNEE's seed directions across the bounds b (mnee_seeds - 1).
+  template <typename F>
+  void for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const;
+  // MNEE's NEE side: beta-less contribution F(X) / p_L * w_L of the probe's light point.
+  Rgb mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& counters) const;
+  float mnee_bsdf_weight(const ChainTrack& chain, const scene::SurfaceHit& hit, core::Rng& rng,
+                         VolpathCounters& counters) const;
+
   template <bool kMedia>
   Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
 
@@ -78,6 +128,8 @@ class VolpathTracer {
   int m_max_depth;
   bool m_has_media;
   int m_camera_medium;
+  bool m_mnee;  // settings.mnee, nee, and a refractive surface in a scene with media
+  std::vector<int> m_reflectors;  // shapes MNEE tries a reflection off (volpath_mnee.h)
 };
 
 }  // namespace dp::integrators

@@ -83,7 +83,11 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 
-std::unique_ptr<scene::Scene> caustic_box(int resolution) {
+namespace {
+scene::HomogeneousMedium make_medium(const Rgb& sigma_a, const Rgb& sigma_s, float g);
+}  // namespace
+
+std::unique_ptr<scene::Scene> caustic_box(int resolution, bool fog) {
   auto s = std::make_unique<scene::Scene>();
   const int white = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb(0.7f, 0.7f, 0.7f)))));
   const int black = s->add_bsdf(scene::make_two_sided(scene::make_diffuse(scene::constant_texture(Rgb::Zero()))));
@@ -106,6 +110,7 @@ std::unique_ptr<scene::Scene> caustic_box(int resolution) {
   auto glass = std::make_unique<scene::Sphere>(Vec3(0.0f, y, 0.0f), 0.4f);
   glass->material = s->add_bsdf(scene::make_dielectric(1.5f, 1.0f, 0.0f, scene::MicrofacetType::ggx));
   s->add_shape(std::move(glass));
+  if (fog) s->set_camera_medium(s->add_medium(make_medium(Rgb::Constant(0.05f), Rgb::Constant(0.4f), 0.0f)));
   return finish(std::move(s), Vec3(0.0f, -0.1f, 0.95f), Vec3(0.0f, -1.0f, -0.2f), 70.0f, resolution);
 }
 

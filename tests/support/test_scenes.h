@@ -23,7 +23,9 @@ std::unique_ptr<scene::Scene> lit_box(scene::BsdfPtr sphere_a, scene::BsdfPtr sp
 // ceiling light, and a smooth glass sphere (eta 1.5, radius 0.4) centred in the opening
 // fills it, so every light path that reaches the floor passes through the glass (L S+ D):
 // the floor is lit by a caustic only. The camera looks down at the floor.
-std::unique_ptr<scene::Scene> caustic_box(int resolution);
+// `fog`: a thin isotropic fog (sigma_s 0.4, sigma_a 0.05) fills the box (the camera's
+// medium), so the caustic is also volumetric.
+std::unique_ptr<scene::Scene> caustic_box(int resolution, bool fog = false);
 
 // An open scene lit only by a textured environment (a 32x16 lat-long checkerboard held in
 // memory: cells of 4x4 texels alternating warm bright (1.6, 1.4, 1.0) and dark blue

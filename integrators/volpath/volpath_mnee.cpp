@@ -1,0 +1,306 @@
+// Manifold next-event estimation in volpath: the solution X(x, y), its two MIS weights
+// (volpath_mnee.h has the derivation).
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "integrators/path/path_tracer.h"  // power_heuristic
+#include "integrators/volpath/volpath_tracer.h"
+#include "manifold/constraints.h"
+#include "manifold/local_geometry.h"
+#include "manifold/walk.h"
+#include "pathspace/scatter.h"
+#include "scene/bsdf/bsdf.h"
+#include "scene/media/medium_interface.h"
+#include "scene/media/phase_function.h"
+
+namespace dp::integrators {
+
+using scene::SurfaceHit;
+
+namespace {
+
+Vec3d d3(const Vec3& v) { return v.cast<double>(); }
+
+bool reflects(const SurfaceHit& h) {
+  return h.bsdf && h.bsdf->is_purely_delta() && (h.bsdf->lobes() & scene::kDeltaReflection) != 0;
+}
+
+// The Dirac lobe `lobe` at h for light arriving from -w_in (radiance mode, as volpath
+// samples it); nullopt if the surface cannot scatter this way (TIR).
+std::optional<scene::BsdfSample> dirac(const SurfaceHit& h, const Vec3& w_in, uint32_t lobe) {
+  const Vec3 wi = h.shading.to_local(-w_in);
+  if (!pathspace::consistent_side(h, -w_in, wi.z())) return std::nullopt;
+  auto bs = pathspace::sample_dirac_lobe(*h.bsdf, pathspace::radiance_context(h), wi, lobe, 0.5f);
+  if (!bs || !(bs->pdf > 0.0f) || is_black(bs->weight)) return std::nullopt;
+  return bs;
+}
+
+// A ray leaving the anchor along w.
+Ray leave(const scene::Scene& scene, const MneeAnchor& x, const Vec3& w) {
+  if (x.surface) return scene.continue_ray(x.hit, w);
+  Ray r;
+  r.o = x.p;
+  r.d = w;
+  r.tmin = 0.0f;
+  r.tmax = kInfinity;
+  return r;
+}
+
+// Two chains with the same refractions at the same places (within tol).
+bool same_chain(const MneeConnection& a, const MneeConnection& b, float tol) {
+  if (a.m != b.m || a.reflect_mask != b.reflect_mask) return false;
+  for (int i = 0; i < a.m; ++i)
+    if ((a.verts[size_t(i)] - b.verts[size_t(i)]).norm() > tol) return false;
+  return true;
+}
+
+double power_heuristic_d(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+}  // namespace
+
+template <typename F>
+void VolpathTracer::for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const {
+  // Directions through the shape at offsets across its bounds, in the plane of x, y and the
+  // bounds' centre (the plane of symmetry of a ball: every solution lies in it).
+  const int pairs = (std::min(m_settings.mnee_seeds, kMaxMneeSeeds) - 1) / 2;
+  if (pairs <= 0) return;
+  const Vec3 to_c = b.center() - xp;
+  const float half = 0.5f * (b.hi - b.lo).minCoeff();
+  Vec3 normal = to_c.cross(y - xp);
+  if (!(normal.squaredNorm() > 1e-12f * to_c.squaredNorm() * (y - xp).squaredNorm()))
+    normal = Frame::from_normal(to_c.normalized()).s;
+  const Vec3 u = normal.cross(to_c).normalized();
+  for (int j = 1; j <= pairs; ++j) {
+    const float t = float(j) / (float(pairs) + 0.5f) * half;
+    f((to_c + t * u).normalized());
+    f((to_c - t * u).normalized());
+  }
+}
+
+MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int max_chain,
+                                          bool refraction_hint, core::Rng& rng, VolpathCounters& c) const {
+  MneeSolutions out;
+  max_chain = std::min(max_chain, m_settings.mnee_max_chain);
+  const Vec3 xp = x.position();
+  Vec3 d = y - xp;
+  const float dist = d.norm();
+  if (max_chain < 1 || !(dist > 0.0f)) return out;
+  d /= dist;
+  const float tol = 1e-3f * std::max(1.0f, m_scene.scene_radius());
+  auto add = [&](const MneeConnection& X) {
+    if (!X.ok || out.count == kMaxMneeSolutions) return;
+    for (int i = 0; i < out.count; ++i)
+      if (same_chain(out.x[size_t(i)], X, tol)) return;
+    out.x[size_t(out.count++)] = X;
+  };
+  // Reflection chains: one reflection off each specular shape, seeded at the point of its
+  // bounds' sphere whose normal bisects the directions to x and y.
+  for (const int shape : m_reflectors) {
+    const Bounds3 b = m_scene.shapes()[size_t(shape)]->bounds();
+    const Vec3 centre = b.center();
+    const float radius = 0.5f * (b.hi - b.lo).minCoeff();
+    const Vec3 bis = (xp - centre).normalized() + (y - centre).normalized();
+    ++c.mnee_reflection_attempts;
+    if (bis.squaredNorm() > 1e-8f) {
+      const Vec3 seed = (centre + radius * bis.normalized() - xp).normalized();
+      if (seed.allFinite()) add(mnee_solve(x, y, n_y, 1, 1u, shape, seed, rng, c));
+    }
+  }
+  if (!refraction_hint) return out;
+
+  // Refraction chains. The straight segment x -> y: its refractive boundaries fix m;
+  // anything else blocks.
+  ++c.mnee_attempts;
+  int m = 0, first = -1;
+  {
+    SurfaceHit h;
+    Ray r = x.surface ? m_scene.spawn_segment(x.hit, y) : leave(m_scene, x, d);
+    if (!x.surface) r.tmax = std::max(0.0f, dist - 2.0f * scene::Scene::epsilon_at(y));
+    for (int k = 0; m_scene.intersect(r, h); ++k) {
+      if (k > kMaxNullCrossings) return out;
+      if (!scene::is_index_matched(h)) {
+        if (!mnee_refracts(h) || ++m > max_chain) return out;
+        if (first < 0) first = h.shape;
+      }
+      r = m_scene.spawn_segment(h, y);
+    }
+  }
+  if (m == 0) return out;  // unblocked: plain NEE's path
+  ++c.mnee_chains;
+
+  // Seeds: the straight direction, then directions across the first refractive shape.
+  add(mnee_solve(x, y, n_y, m, 0u, -1, d, rng, c));
+  for_seeds(xp, y, m_scene.shapes()[size_t(first)]->bounds(),
+            [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, rng, c)); });
+  return out;
+}
+
+MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask,
+                                         int shape, const Vec3& d, core::Rng& rng, VolpathCounters& c) const {
+  MneeConnection out;
+  auto reflection = [&](int i) { return ((mask >> i) & 1u) != 0; };
+  auto lobe = [&](int i) { return reflection(i) ? scene::kDeltaReflection : scene::kDeltaTransmission; };
+  const Vec3 xp = x.position();
+  SurfaceHit h;
+  // The seed: refracted from x along d at the first m boundaries, ending on the plane
+  // through y tangent to the light; then the walk moves its end onto y.
+  manifold::Chain seed;
+  seed.pin = manifold::Pin::position;
+  seed.end_plane = true;
+  manifold::ChainVertex v0 = manifold::make_point(d3(xp));
+  if (x.surface) {  // offsets re-traced rays off the surface
+    v0.f.ng = v0.f.n = d3(x.hit.ng).normalized();
+    v0.has_surface = true;
+  }
+  seed.v.push_back(v0);
+  {
+    Ray r = leave(m_scene, x, d);
+    Vec3 w = d;
+    for (int i = 0; i < m; ++i) {
+      const bool ok = m_scene.intersect(r, h) && (shape < 0 || h.shape == shape) &&
+                      (reflection(i) ? reflects(h) : mnee_refracts(h));
+      if (!ok) {
+        ++c.mnee_seed_failed;
+        return out;
+      }
+      const auto bs = dirac(h, w, lobe(i));
+      const float eta = !bs || reflection(i) ? 1.0f : h.ng.dot(-w) > 0.0f ? bs->eta : 1.0f / bs->eta;
+      const auto type = reflection(i) ? manifold::Interaction::reflection : manifold::Interaction::refraction;
+      const auto v = bs ? manifold::make_vertex(m_scene, h, type, double(eta)) : std::nullopt;
+      if (!v || (!reflection(i) && eta == 1.0f)) {
+        ++c.mnee_seed_failed;
+        return out;
+      }
+      seed.v.push_back(*v);
+      w = h.shading.to_world(bs->wo);
+      r = m_scene.continue_ray(h, w);
+    }
+  }
+  seed.v.push_back(manifold::make_plane_end(d3(y), d3(n_y).normalized()));
+  manifold::Chain exact;
+  const manifold::WalkStatus seeded = manifold::retrace(m_scene, seed, seed.v[1].p(), exact);
+  c.mnee_seeds.record(seeded, 0);
+  if (seeded != manifold::WalkStatus::ok) {
+    ++c.mnee_seed_failed;
+    return out;
+  }
+  manifold::WalkSettings ws;
+  ws.max_iterations = m_settings.mnee_iterations;
+  ws.exact_input = true;
+  const manifold::WalkResult walked = manifold::walk(m_scene, exact, d3(y), ws, &c.mnee_walks);
+  double G = 0.0;
+  if (!walked.ok() || manifold::generalized_geometry(walked.chain, G) != manifold::WalkStatus::ok) {
+    ++c.mnee_walk_failed;
+    return out;
+  }
+  const manifold::Chain& X = walked.chain;
+  // D = d w_0 / dA(y): G without the cosine at a surface anchor.
+  double D = G;
+  if (x.surface) D /= std::abs((X.v[1].p() - X.v[0].p()).normalized().dot(X.v[0].f.ng));
+  if (m_settings.fault == VolpathFault::mnee_planar_geometry)
+    D = 1.0 / (X.v[size_t(m + 1)].p() - X.v[size_t(m)].p()).squaredNorm();
+  if (!(D > 0.0) || !std::isfinite(D)) {
+    ++c.mnee_walk_failed;
+    return out;
+  }
+
+  // The solved chain re-traced in float: f, the lobes' densities, Tr, the light.
+  const float tol = 1e-4f * std::max(1.0f, m_scene.scene_radius());
+  for (int i = 0; i < m; ++i) out.verts[size_t(i)] = X.v[size_t(i + 1)].p().cast<float>();
+  const Vec3 w0 = (out.verts[0] - xp).normalized();
+  Rgb f;
+  double p = 0.0;
+  int medium = x.medium;
+  if (x.surface) {
+    const Vec3 wo = x.hit.shading.to_local(w0);
+    if (!pathspace::consistent_side(x.hit, w0, wo.z())) return out;
+    float pdf = 0.0f;
+    f = x.hit.bsdf->eval_pdf(pathspace::radiance_context(x.hit), x.wi_local, wo, pdf) * abs_cos_theta(wo);
+    p = double(pdf);
+    medium = scene::medium_toward(x.hit, w0, x.medium, m_camera_medium);
+  } else {
+    const scene::HenyeyGreenstein phase(m_scene.media()[size_t(x.medium)].phase);
+    f = Rgb::Constant(phase.eval(x.d_in, w0));
+    p = double(phase.pdf(x.d_in, w0));
+  }
+  if (is_black(f) || !(p > 0.0)) return out;
+  Ray r = leave(m_scene, x, w0);
+  Rgb tr_all = Rgb::Ones(), tr;
+  for (int i = 0; i <= m; ++i) {
+    const Vec3 target = i < m ? out.verts[size_t(i)] : y;
+    const MarchEnd end = march(r, medium, nullptr, rng, c, tr, h);
+    const bool there = end == MarchEnd::surface && (h.p - target).norm() <= tol;
+    if (!there || (i < m ? h.shape != X.v[size_t(i + 1)].shape : !h.emitter)) {
+      ++c.mnee_occluded;
+      return out;
+    }
+    tr_all *= tr;
+    if (i == m) break;
+    const Vec3 next = i + 1 < m ? out.verts[size_t(i + 1)] : y;
+    const Vec3 wo = (next - h.p).normalized();
+    const auto bs = dirac(h, r.d, lobe(i));
+    if (!bs || (bs->wo - h.shading.to_local(wo)).norm() > 1e-3f) {
+      ++c.mnee_occluded;
+      return out;
+    }
+    f *= bs->weight * bs->pdf;  // f_i |cos_i|
+    p *= double(bs->pdf);
+    medium = scene::medium_toward(h, wo, medium, m_camera_medium);
+    r = m_scene.continue_ray(h, wo);
+  }
+  const Rgb Le = h.emitter->eval(h, -r.d);
+  const Vec3 straight = y - xp;
+  const float dist = straight.norm();
+  const double p_light = double(m_scene.emitter_pmf(h.emitter)) * double(h.emitter->pdf_direct(xp, y, n_y, straight / dist)) *
+                         double(std::abs(n_y.normalized().dot(straight / dist))) / (double(dist) * double(dist));
+  if (is_black(Le) || is_black(tr_all) || !(p_light > 0.0) || !std::isfinite(p_light)) return out;
+  out.value = f * tr_all * Le * float(D / p_light);
+  out.p_light = p_light;
+  out.p_bsdf = p * D;
+  out.D = D;
+  out.s1 = X.v[1].p();
+  out.m = m;
+  out.reflect_mask = mask;
+  out.ok = is_finite(out.value) && std::isfinite(out.p_bsdf);
+  return out;
+}
+
+Rgb VolpathTracer::mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& c) const {
+  const MneeSolutions S = mnee_connect(x, probe.y, probe.n, m_max_depth - x.depth - 1, probe.try_chain, rng, c);
+  const bool no_mis = m_settings.fault == VolpathFault::mnee_without_mis;
+  Rgb sum = Rgb::Zero();
+  for (int i = 0; i < S.count; ++i) {
+    const MneeConnection& X = S.x[size_t(i)];
+    sum += X.value * float(no_mis ? 1.0 : power_heuristic_d(X.p_light, X.p_bsdf));
+  }
+  c.mnee_connections += S.count;
+  return sum;
+}
+
+float VolpathTracer::mnee_bsdf_weight(const ChainTrack& chain, const SurfaceHit& hit, core::Rng& rng,
+                                      VolpathCounters& c) const {
+  ++c.mnee_bsdf_hits;
+  VolpathCounters scratch;  // MNEE's own counters count its NEE side only
+  const MneeSolutions S =
+      mnee_connect(chain.anchor, hit.p, hit.ng, m_max_depth - chain.anchor.depth - 1, true, rng, scratch);
+  c.null_limit += scratch.null_limit;
+  MneeConnection path;
+  path.m = chain.m;
+  path.reflect_mask = chain.reflect_mask;
+  path.verts = chain.verts;
+  const float tol = 1e-3f * std::max(1.0f, m_scene.scene_radius());
+  for (int i = 0; i < S.count; ++i) {
+    const MneeConnection& X = S.x[size_t(i)];
+    if (!same_chain(X, path, tol)) continue;
+    ++c.mnee_bsdf_matched;
+    if (m_settings.fault == VolpathFault::mnee_without_mis) return 1.0f;
+    return float(power_heuristic_d(X.p_bsdf, X.p_light));
+  }
+  return 1.0f;
+}
+
+}  // namespace dp::integrators

@@ -1,0 +1,107 @@
+// Manifold next-event estimation for volpath (Hanika, Droske and Fascione 2015, "Manifold
+// next event estimation"), combined with volpath's BSDF/phase sampling by multiple
+// importance sampling, so that light seen only through refractive surfaces -- a caustic on
+// a floor, a volumetric caustic in fog behind a glass ball -- is found by light sampling
+// and not only by the rare paths that refract onto a small light.
+//
+// The strategy. At a non-specular vertex x (a medium vertex or a surface vertex with a
+// non-Dirac BSDF) NEE samples a light point y with area density p_L(y) (emitter pmf times
+// the solid-angle density of Emitter::sample_direct from x, times |cos_y| / |y - x|^2).
+// If the straight segment x -> y is blocked only by refractive boundaries (smooth
+// dielectrics: purely Dirac BSDFs with a transmission lobe; index-matched boundaries are
+// passed), their count m (1 <= m <= mnee_max_chain and the depth budget) fixes the chain
+// x, s_1 .. s_m, y. The seed refracts the ray x -> y at the first m boundaries it meets
+// and ends on the plane through y tangent to the light; manifold::walk (Jakob & Marschner
+// 2012, Sec. 5) then moves its end onto y, keeping x pinned and every s_i a refraction.
+// The solution is a deterministic function X(x, y) of x and y (or none), so MNEE is a
+// sampling technique over the set of paths it can return, of density p_L(y) on them.
+//
+// Its estimate, with the Dirac constraints integrated out (Jakob & Marschner 2012,
+// Sec. 4.3, the generalized geometry term),
+//   F(X) = f_x(w_0) prod_i [f_i |cos_i|] Tr(x .. y) L_e(y, -w_m) D(x -> y),
+//   D = d w_0 / dA(y)  (manifold::generalized_geometry without the cosine at x),
+// f_x the BSDF times |cos| (surface) or the phase function (medium; sigma_s is in the
+// path throughput already), f_i |cos_i| = weight * pdf of the Dirac transmission lobe at
+// s_i (radiance mode, as volpath samples it), Tr over every segment (index-matched
+// boundaries switch media; ratio tracking in grids), so the NEE side adds
+//   beta F(X) / p_L(y) * w_L,   w_L = p_L^2 / (p_L^2 + p_B^2),
+// with p_B(X) = p_x(w_0) prod_i P_i D the area density at y of BSDF/phase sampling
+// reaching y through the same chain (p_x the BSDF or phase density of w_0, P_i the
+// selection probability of each transmission lobe).
+//
+// The BSDF side. A path that leaves a non-specular vertex x, refracts at s_1 .. s_m and
+// hits an area light at y is weighted w_B = p_B^2 / (p_B^2 + p_L^2) if X(x, y) is that
+// very path (its vertices within 1e-3 scene radii), and 1 otherwise -- MNEE cannot
+// produce it (a missed or different solution, a reflection in the chain, TIR). Both
+// weights are computed from the same X(x, y) and its p_L, p_B, so they sum to one on every
+// path MNEE can return: the combination is unbiased (Veach 1997, Sec. 9.2), including
+// where MNEE misses solutions (near caustic folds), at the cost of variance only.
+//
+// Scope: finite area lights (point, spot and directional lights and environments are left
+// to plain NEE), scenes with media (volpath's media variant; the variant without media is
+// `path`'s algorithm). Counters `volpath.mnee.*`.
+#pragma once
+
+#include <array>
+
+#include "core/math.h"
+#include "scene/bsdf/bsdf.h"
+#include "scene/surface.h"
+
+namespace dp::integrators {
+
+// A surface MNEE refracts through: a smooth dielectric (purely Dirac, with transmission).
+inline bool mnee_refracts(const scene::SurfaceHit& h) {
+  return h.bsdf && h.bsdf->is_purely_delta() && (h.bsdf->lobes() & scene::kDeltaTransmission) != 0;
+}
+
+// The longest chain MNEE solves (VolpathSettings::mnee_max_chain is at most this).
+constexpr int kMaxMneeChain = 8;
+
+// The non-specular vertex x an MNEE connection starts from.
+struct MneeAnchor {
+  bool surface = false;
+  scene::SurfaceHit hit;   // surface: the vertex
+  Vec3 wi_local{0, 0, 1};  // surface: toward the previous vertex, shading frame
+  Vec3 p{0, 0, 0};         // medium: the point
+  Vec3 d_in{0, 0, 1};      // medium: the direction the path arrived along
+  int medium = -1;         // the medium the path arrived in (medium: the point's)
+  int depth = 0;           // segments up to x (volpath's depth at the vertex)
+  const Vec3& position() const { return surface ? hit.p : p; }
+};
+
+// What NEE at a vertex tells MNEE: the light point it sampled, and whether the straight
+// shadow ray may have been blocked by a refractive surface (false: plain NEE's case).
+struct NeeProbe {
+  bool area_light = false;  // a finite, non-Dirac light point was sampled
+  Vec3 y{0, 0, 0}, n{0, 0, 1};
+  bool try_chain = false;
+};
+
+// The most seeds (hence solutions) per connection (VolpathSettings::mnee_seeds).
+constexpr int kMaxMneeSeeds = 9;
+// The most specular shapes MNEE tries a reflection off (more: no reflection chains).
+constexpr int kMaxMneeReflectors = 4;
+// The most distinct solutions one connection keeps (further ones are dropped).
+constexpr int kMaxMneeSolutions = 16;
+
+// One MNEE solution.
+struct MneeConnection {
+  bool ok = false;
+  Rgb value = Rgb::Zero();  // F(X) / p_L(y) (before the MIS weight)
+  double p_light = 0;       // p_L(y), area measure
+  double p_bsdf = 0;        // p_B(X), area measure
+  double D = 0;             // d w_0 / dA(y)
+  Vec3d s1{0, 0, 0};        // s_1 in double (the walked chain's)
+  int m = 0;                  // Dirac vertices
+  uint32_t reflect_mask = 0;  // bit i: s_{i+1} reflects (else it refracts)
+  std::array<Vec3, kMaxMneeChain> verts{};  // s_1 .. s_m
+};
+
+// The distinct solutions X(x, y) that the seeds reach.
+struct MneeSolutions {
+  int count = 0;
+  std::array<MneeConnection, kMaxMneeSolutions> x{};
+};
+
+}  // namespace dp::integrators
