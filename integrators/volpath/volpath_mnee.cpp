@@ -1,4 +1,4 @@
-// Manifold next-event estimation in volpath: the solution X(x, y), its two MIS weights
+// Manifold next-event estimation in volpath: the solutions S(x, y), the two MIS weights
 // (volpath_mnee.h has the derivation).
 #include <algorithm>
 #include <cmath>
@@ -97,42 +97,52 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
       if (same_chain(out.x[size_t(i)], X, tol)) return;
     out.x[size_t(out.count++)] = X;
   };
-  // Reflection chains: one reflection off each specular shape, seeded at the point of its
-  // bounds' sphere whose normal bisects the directions to x and y.
-  for (const int shape : m_reflectors) {
-    const Bounds3 b = m_scene.shapes()[size_t(shape)]->bounds();
-    const Vec3 centre = b.center();
-    const float radius = 0.5f * (b.hi - b.lo).minCoeff();
-    const Vec3 bis = (xp - centre).normalized() + (y - centre).normalized();
-    ++c.mnee_reflection_attempts;
-    if (bis.squaredNorm() > 1e-8f) {
-      const Vec3 seed = (centre + radius * bis.normalized() - xp).normalized();
-      if (seed.allFinite()) add(mnee_solve(x, y, n_y, 1, 1u, shape, seed, rng, c));
-    }
-  }
-  if (!refraction_hint) return out;
-
-  // Refraction chains. The straight segment x -> y: its refractive boundaries fix m;
-  // anything else blocks.
-  ++c.mnee_attempts;
+  // The straight segment x -> y: its refractive boundaries fix m (the straight family);
+  // anything else blocks it.
   int m = 0, first = -1;
-  {
+  bool straight = refraction_hint;
+  if (straight) {
+    ++c.mnee_attempts;
     SurfaceHit h;
     Ray r = x.surface ? m_scene.spawn_segment(x.hit, y) : leave(m_scene, x, d);
     if (!x.surface) r.tmax = std::max(0.0f, dist - 2.0f * scene::Scene::epsilon_at(y));
-    for (int k = 0; m_scene.intersect(r, h); ++k) {
-      if (k > kMaxNullCrossings) return out;
+    for (int k = 0; straight && m_scene.intersect(r, h); ++k) {
       if (!scene::is_index_matched(h)) {
-        if (!mnee_refracts(h) || ++m > max_chain) return out;
+        straight = mnee_refracts(h) && ++m <= max_chain;
         if (first < 0) first = h.shape;
       }
+      straight = straight && k < kMaxNullCrossings;
       r = m_scene.spawn_segment(h, y);
     }
+    straight = straight && m > 0;  // m = 0: unblocked, plain NEE's path
   }
-  if (m == 0) return out;  // unblocked: plain NEE's path
-  ++c.mnee_chains;
 
-  // Seeds: the straight direction, then directions across the first refractive shape.
+  // The shape families (mnee_shapes), per specular shape S: one reflection off S, seeded at
+  // the point of its bounds' sphere whose normal bisects the directions to x and y; two
+  // refractions through S (where the straight family does not already seed S), seeded as
+  // the straight family across S and through its centre.
+  for (const int shape : m_shapes) {
+    ++c.mnee_shape_attempts;
+    const Bounds3 b = m_scene.shapes()[size_t(shape)]->bounds();
+    const Vec3 centre = b.center();
+    const scene::Bsdf& bsdf = *m_scene.bsdfs()[size_t(m_scene.shapes()[size_t(shape)]->material)];
+    if ((bsdf.lobes() & scene::kDeltaReflection) != 0) {
+      const float radius = 0.5f * (b.hi - b.lo).minCoeff();
+      const Vec3 bis = (xp - centre).normalized() + (y - centre).normalized();
+      const Vec3 seed = (centre + radius * bis.normalized() - xp).normalized();
+      if (bis.squaredNorm() > 1e-8f && seed.allFinite()) add(mnee_solve(x, y, n_y, 1, 1u, shape, seed, rng, c));
+    }
+    if ((bsdf.lobes() & scene::kDeltaTransmission) != 0 && max_chain >= 2 && !(straight && first == shape && m == 2)) {
+      auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, rng, c)); };
+      through((centre - xp).normalized());
+      for_seeds(xp, y, b, through);
+    }
+  }
+  if (!straight) return out;
+
+  // The straight family: the straight direction, then directions across the first
+  // refractive shape.
+  ++c.mnee_chains;
   add(mnee_solve(x, y, n_y, m, 0u, -1, d, rng, c));
   for_seeds(xp, y, m_scene.shapes()[size_t(first)]->bounds(),
             [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, rng, c)); });

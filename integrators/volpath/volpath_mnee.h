@@ -13,8 +13,15 @@
 // x, s_1 .. s_m, y. The seed refracts the ray x -> y at the first m boundaries it meets
 // and ends on the plane through y tangent to the light; manifold::walk (Jakob & Marschner
 // 2012, Sec. 5) then moves its end onto y, keeping x pinned and every s_i a refraction.
-// The solution is a deterministic function X(x, y) of x and y (or none), so MNEE is a
-// sampling technique over the set of paths it can return, of density p_L(y) on them.
+// Seeds: the straight direction and mnee_seeds - 1 directions across the first refracting
+// shape, in the plane of x, y and the shape's centre (a ball lens has up to three
+// solutions inside its caustic). With mnee_shapes, each purely specular shape S (at most
+// four) adds two families of its own: one reflection off S (seeded where S's bounding
+// sphere's normal bisects the directions to x and y), and two refractions through S where
+// the straight segment misses it (light that a ball bends out of its shadow).
+// The distinct solutions found form a set S(x, y), a deterministic function of x and y
+// (possibly empty), so MNEE is a sampling technique over the paths it can return, each of
+// density p_L(y); the NEE side adds every one.
 //
 // Its estimate, with the Dirac constraints integrated out (Jakob & Marschner 2012,
 // Sec. 4.3, the generalized geometry term),
@@ -30,10 +37,10 @@
 // selection probability of each transmission lobe).
 //
 // The BSDF side. A path that leaves a non-specular vertex x, refracts at s_1 .. s_m and
-// hits an area light at y is weighted w_B = p_B^2 / (p_B^2 + p_L^2) if X(x, y) is that
+// hits an area light at y is weighted w_B = p_B^2 / (p_B^2 + p_L^2) if S(x, y) holds that
 // very path (its vertices within 1e-3 scene radii), and 1 otherwise -- MNEE cannot
 // produce it (a missed or different solution, a reflection in the chain, TIR). Both
-// weights are computed from the same X(x, y) and its p_L, p_B, so they sum to one on every
+// weights are computed from the same solution and its p_L, p_B, so they sum to one on every
 // path MNEE can return: the combination is unbiased (Veach 1997, Sec. 9.2), including
 // where MNEE misses solutions (near caustic folds), at the cost of variance only.
 //
@@ -81,7 +88,7 @@ struct NeeProbe {
 // The most seeds (hence solutions) per connection (VolpathSettings::mnee_seeds).
 constexpr int kMaxMneeSeeds = 9;
 // The most specular shapes MNEE tries a reflection off (more: no reflection chains).
-constexpr int kMaxMneeReflectors = 4;
+constexpr int kMaxMneeShapes = 4;
 // The most distinct solutions one connection keeps (further ones are dropped).
 constexpr int kMaxMneeSolutions = 16;
 
@@ -98,7 +105,7 @@ struct MneeConnection {
   std::array<Vec3, kMaxMneeChain> verts{};  // s_1 .. s_m
 };
 
-// The distinct solutions X(x, y) that the seeds reach.
+// The distinct solutions S(x, y) that the seeds reach.
 struct MneeSolutions {
   int count = 0;
   std::array<MneeConnection, kMaxMneeSolutions> x{};

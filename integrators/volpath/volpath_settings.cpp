@@ -17,9 +17,10 @@ VolpathSettings VolpathSettings::read(Settings& s) {
                       "(scenes with media, area lights; Hanika et al. 2015)");
   v.mnee_max_chain = s.get_int("mnee_max_chain", v.mnee_max_chain,
                                "most refractive boundaries between a vertex and the light that MNEE solves for");
-  v.mnee_reflections = s.get_bool("mnee_reflections", v.mnee_reflections,
-                                  "MNEE also solves one reflection off each purely specular shape (scenes with at most "
-                                  "4 of them)");
+  v.mnee_shapes = s.get_bool("mnee_shapes", v.mnee_shapes,
+                             "MNEE also solves chains seeded at each purely specular shape (scenes with at most 4): "
+                             "one reflection off it, and two refractions through it where the straight segment to "
+                             "the light misses it");
   v.mnee_seeds = s.get_int("mnee_seeds", v.mnee_seeds,
                             "seed directions per MNEE connection: the straight line, then pairs across the first "
                             "refracting shape; every distinct solution found is added");

@@ -30,7 +30,7 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.grid_flights", grid_flights);
   stats.add("volpath.mnee.attempts", mnee_attempts);
   stats.add("volpath.mnee.chains", mnee_chains);
-  stats.add("volpath.mnee.reflection_attempts", mnee_reflection_attempts);
+  stats.add("volpath.mnee.shape_attempts", mnee_shape_attempts);
   stats.add("volpath.mnee.fail.seed", mnee_seed_failed);
   stats.add("volpath.mnee.fail.walk", mnee_walk_failed);
   stats.add("volpath.mnee.fail.occluded", mnee_occluded);
@@ -67,14 +67,15 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
   if (!m_has_media || !settings.mnee || !settings.nee) return;
   for (const auto& b : scene.bsdfs())
     if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaTransmission) != 0) m_mnee = true;
-  if (!settings.mnee_reflections) return;
+  if (!settings.mnee_shapes) return;
   for (size_t i = 0; i < scene.shapes().size(); ++i) {
     const int mat = scene.shapes()[i]->material;
     const scene::Bsdf* b = mat >= 0 ? scene.bsdfs()[size_t(mat)].get() : nullptr;
-    if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaReflection) != 0) m_reflectors.push_back(int(i));
+    if (b && b->is_purely_delta() && (b->lobes() & (scene::kDeltaReflection | scene::kDeltaTransmission)) != 0)
+      m_shapes.push_back(int(i));
   }
-  if (m_reflectors.size() > size_t(kMaxMneeReflectors)) m_reflectors.clear();
-  if (!m_reflectors.empty()) m_mnee = true;
+  if (m_shapes.size() > size_t(kMaxMneeShapes)) m_shapes.clear();
+  if (!m_shapes.empty()) m_mnee = true;
 }
 
 VolpathTracer::MarchEnd VolpathTracer::march(Ray r, int& medium, const Vec3* target, core::Rng& rng,

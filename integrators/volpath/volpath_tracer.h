@@ -47,7 +47,7 @@ struct VolpathCounters {
   int64_t grid_flights = 0;            // free flights by delta tracking (grid media)
   // Manifold NEE (volpath_mnee.h).
   int64_t mnee_attempts = 0;     // light samples whose straight segment a refractive surface blocks
-  int64_t mnee_reflection_attempts = 0;  // reflection chains tried (per specular shape)
+  int64_t mnee_shape_attempts = 0;  // shape families tried (mnee_shapes; per specular shape)
   int64_t mnee_chains = 0;       // ... blocked by refractive surfaces only (a chain to solve)
   int64_t mnee_seed_failed = 0;  // the refracted seed missed a boundary or the light's plane
   int64_t mnee_walk_failed = 0;  // the manifold walk did not reach y
@@ -85,7 +85,7 @@ class VolpathTracer {
   // nullptr for a light at infinity.
   Rgb shadow_transmittance(Ray r, int medium, const Vec3* target, core::Rng& rng, VolpathCounters& counters) const;
 
-  // The MNEE solutions X(x, y) from anchor x to the light point y (normal n_y), at most
+  // The MNEE solutions S(x, y) from anchor x to the light point y (normal n_y), at most
   // `max_chain` refractions (volpath_mnee.h; volpath_mnee.cpp).
   // refraction_hint false: the straight segment is known not to be blocked by a
   // refractive surface first (reflection chains only).
@@ -129,7 +129,7 @@ class VolpathTracer {
   bool m_has_media;
   int m_camera_medium;
   bool m_mnee;  // settings.mnee, nee, and a refractive surface in a scene with media
-  std::vector<int> m_reflectors;  // shapes MNEE tries a reflection off (volpath_mnee.h)
+  std::vector<int> m_shapes;  // specular shapes of MNEE's shape families (volpath_mnee.h)
 };
 
 }  // namespace dp::integrators

@@ -101,7 +101,7 @@ TEST_CASE("volpath: MNEE's D = dw0/dA(y) agrees with finite differences", "[unit
   core::Rng rng(7);
   integrators::VolpathCounters c;
   integrators::VolpathSettings vs;
-  vs.mnee_reflections = true;
+  vs.mnee_shapes = true;
   const integrators::VolpathTracer tracer(*s, vs, 16);
   integrators::VolpathSettings bad = vs;
   bad.fault = integrators::VolpathFault::mnee_planar_geometry;
@@ -165,7 +165,7 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   off.mnee = false;
   integrators::VolpathSettings on;
   on.mnee = true;
-  on.mnee_reflections = true;
+  on.mnee_shapes = true;
   integrators::RenderResult last;
   const BlockMeans plain = blocks(*s, off, 100);
   const BlockMeans mnee = blocks(*s, on, 200, &last);
@@ -173,7 +173,7 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   // through the ball that MNEE also returns (so both MIS weights were exercised).
   CHECK(last.stats.get("volpath.mnee.chains") > 0);
   CHECK(last.stats.get("volpath.mnee.connections") > 0);
-  CHECK(last.stats.get("volpath.mnee.reflection_attempts") > 0);
+  CHECK(last.stats.get("volpath.mnee.shape_attempts") > 0);
   CHECK(last.stats.get("volpath.mnee.bsdf_matched") > 0);
   CHECK(last.stats.get("volpath.nan_dropped") == 0);
   const double worst = test::sidak_welch(mnee, plain, 0.01);
