@@ -24,7 +24,7 @@ namespace dp::integrators {
 
 void GvpmTracer::gather_planes(const GvpmSegment& seg, int k, GvpmScratch& sc, GvpmCounters& counters) const {
   const double inv_n = 1.0 / double(m_paths);
-  for_each_plane_hit(m_scene, *m_planes, seg.ray, seg.len, seg.medium, m_max_depth - 1, PlaneFault::none,
+  for_each_plane_hit(m_scene, *m_planes, seg.ray, seg.len, seg.medium, m_max_depth - 1, PlaneFault::none, nullptr,
                      counters.camera.gather, [&](const MediumPlane& pl, const PlaneHit& h, const Rgb& v) {
                        ++counters.photons_gathered;
                        ++counters.gather_points;

@@ -5,6 +5,7 @@
 
 #include "integrators/media_photons/photon_tracer.h"  // grown_bounds_clip
 #include "scene/media/free_flight.h"
+#include "scene/media/phase_function.h"
 
 namespace dp::integrators {
 
@@ -67,6 +68,84 @@ void record_plane(const scene::Scene& scene, const scene::HomogeneousMedium& med
   pl.index = uint32_t(planes.size());
   planes.push_back(pl);
   ++counters.stored;
+}
+
+void record_plane_grid(const scene::HomogeneousMedium& med, const Vec3& a0, const Vec3& w0, float t_surf,
+                       const Rgb& beta_a0, int depth_b, int medium, core::Rng& rng, std::vector<MediumPlane>& planes,
+                       PlaneTraceCounters& counters) {
+  if (is_black(med.sigma_s) || is_black(beta_a0)) return;  // nothing scatters
+  if (!is_finite(beta_a0) || !a0.allFinite() || !w0.allFinite() || std::isnan(t_surf)) {
+    ++counters.dropped;
+    return;
+  }
+  const scene::DensityGrid& g = *med.density;
+  const float dmax = g.max_value, mu = med.sigma_t()[0] * dmax;
+  float tb = 0.0f, te = 0.0f;
+  if (!(mu > 0.0f) || !g.clip(a0, w0, t_surf, tb, te) || !(te > tb)) return;  // no density on the segment
+  // Kept with the majorant's probability of a collision inside the box (closed form).
+  const float p_rec = -std::expm1(-mu * (te - tb));
+  if (!(rng.uniform() < p_rec)) return;
+  const Vec3 w1 = scene::HenyeyGreenstein(med.phase).sample(w0, rng.uniform2());  // rho / p = 1
+  auto step = [&](float t) { return t - std::log1p(-rng.uniform()) / mu; };
+  // Along w0: the ratio-tracking profile (as scene::TransmittanceProfile), cut where it is 0.
+  thread_local std::vector<float> t0s, v0s, t1s;
+  t0s.clear();
+  v0s.clear();
+  t1s.clear();
+  float tr = 1.0f;
+  for (float t = step(tb); t < te; t = step(t)) {
+    tr *= std::max(0.0f, 1.0f - g.lookup(a0 + t * w0) / dmax);
+    t0s.push_back(t);
+    v0s.push_back(tr);
+    if (!(tr > 0.0f)) {
+      te = t;
+      break;
+    }
+  }
+  // Along w1: up to where a0 + t0 w0 + t1 w1 (t0 in [tb, te]) may still be in the box
+  // (per axis), tentative collisions kept with probability c; the first one dropped ends it.
+  float t1_box = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    if (w1[a] == 0.0f) continue;
+    const float x0 = a0[a] + tb * w0[a], x1 = a0[a] + te * w0[a];
+    const float t = w1[a] > 0.0f ? (g.hi[a] - std::min(x0, x1)) / w1[a] : (g.lo[a] - std::max(x0, x1)) / w1[a];
+    t1_box = std::min(t1_box, t);
+  }
+  if (!(t1_box > 0.0f) || !std::isfinite(t1_box) || !(te > tb)) {
+    ++counters.dropped;
+    return;
+  }
+  const float c = std::clamp(1.0f - g.min_value / dmax, 0.0f, 1.0f);
+  float t1e = t1_box;
+  for (float t = step(0.0f); t < t1_box; t = step(t)) {
+    if (c < 1.0f && !(rng.uniform() < c)) {
+      t1e = t;
+      break;
+    }
+    t1s.push_back(t);
+  }
+  MediumPlane pl;
+  pl.a0 = a0;
+  pl.w0 = w0;
+  pl.w1 = w1;
+  pl.t0_begin = tb;
+  pl.t0_end = te;
+  pl.t1_end = t1e;
+  pl.p_scatter = p_rec;
+  pl.q = 1.0f;
+  pl.beta = beta_a0;
+  pl.depth = int16_t(depth_b);
+  pl.medium = int16_t(medium);
+  pl.index = uint32_t(planes.size());
+  pl.grid_n0 = uint32_t(t0s.size());
+  pl.grid_c = c;
+  pl.grid.reserve(2 * t0s.size() + t1s.size());
+  pl.grid.insert(pl.grid.end(), t0s.begin(), t0s.end());
+  pl.grid.insert(pl.grid.end(), v0s.begin(), v0s.end());
+  pl.grid.insert(pl.grid.end(), t1s.begin(), t1s.end());
+  planes.push_back(std::move(pl));
+  ++counters.stored;
+  ++counters.grid;
 }
 
 }  // namespace dp::integrators

@@ -190,6 +190,9 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
       const Vec3 seg_o = ray.o, seg_d = ray.d;  // the segment and its throughput (a plane's a0, w0, beta)
       const float seg_end = found ? hit.t : kInfinity;
       const Rgb beta_a = beta;
+      // A grid medium's plane: from every segment (its own probability, photon_plane.h).
+      if (planes && med.heterogeneous() && s < max_store)
+        record_plane_grid(med, seg_o, seg_d, seg_end, beta_a, s + 1, medium, plane_rng, *planes, plc);
       beta *= ff.weight;  // Tr sigma_s / p(t) at a scatter, Tr / P(pass) otherwise (free_flight.h)
       if (is_black(beta)) return;
       if (ff.scattered) {
@@ -216,7 +219,7 @@ void trace_one(const scene::Scene& scene, const PhotonTraceParams& params, core:
         ray.tmin = 0.0f;
         ray.tmax = kInfinity;
         if (!survive(++s)) return;
-        if (planes) {
+        if (planes && !med.heterogeneous()) {
           const float u_plane_channel = plane_rng.uniform(), u_plane = plane_rng.uniform();
           record_plane(scene, med, seg_o, seg_d, seg_end, ray.d, beta_a, q_last, s, medium, u_plane_channel, u_plane,
                        *planes, plc);

@@ -15,7 +15,7 @@
 //    with N the emitted paths.
 //    In a grid medium (scene/media/grid_tracking.h) the flight is delta tracking: weight
 //    sigma_s / sigma_t (the albedo) at a scatter, 1 on a pass -- the same expectations.
-//    Beams and planes assume homogeneous media (their integrators refuse grid scenes).
+//    Beams are grid-aware in beam/beam_gather.h, planes in photon_plane.h (record_plane_grid).
 //  * Surfaces as volpath's walk in reverse: BSDF sampling in importance mode, index-
 //    matched boundaries switch the medium and cost no depth; Russian roulette after
 //    rr_depth segments on beta relative to beta_0.
@@ -54,7 +54,9 @@
 //  * Photon planes (`plane`; photon_plane.h; only when asked for): at every scattering
 //    event that continues (phase sample drawn, roulette survived), the segment it lies on
 //    and the sampled direction, with P_s and q; the plane's extent D along w1 is drawn from
-//    a stream of its own, so nothing else changes.
+//    a stream of its own, so nothing else changes. In a grid medium every medium segment
+//    below the last depth makes a plane with a probability of its own, all its random
+//    numbers from that stream too (photon_plane.h, record_plane_grid).
 #pragma once
 
 #include <atomic>

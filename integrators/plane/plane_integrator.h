@@ -16,6 +16,9 @@
 // queries), beam_candidates, plane_tests (pieces whose box a segment passes),
 // intersections (= plane_shadow_rays), occluded, plane_parallel, contributions,
 // depth_skipped, empty_segments, plus the photon pass's and camera paths' counters.
+// Grid media: planes from every medium segment with ratio-tracked transmittances along
+// both directions and the camera segment, sigma_s at the plane points (plane_gather.h,
+// "Grid media"; counter plane.grid_planes); the beams are `beam`'s grid beams.
 // Without media no light path is traced (photon_passes_skipped, media_skipped) and every
 // plane.* work counter is 0. Info: media, kernel_dimension (3, the beams'), radius_initial/final.
 #pragma once
@@ -33,6 +36,7 @@ class PlaneIntegrator final : public Integrator {
   RenderResult render(const scene::Scene& scene, const RenderOptions& options) override;
   bool supports_raw() const override { return true; }
   bool renders_media() const override { return true; }
+  bool renders_grid_media() const override { return true; }  // planes from ratio tracking (plane_gather.h)
   RenderResult finish(const core::RawImage& raw, const RenderOptions& options) const override;
 
  private:

@@ -19,6 +19,7 @@ void PlanePassCounters::flush(core::Stats& stats, const std::string& prefix) con
   stats.add(prefix + ".plane_dropped", plane_dropped);
   stats.add(prefix + ".beam_pieces", beam_pieces);
   stats.add(prefix + ".plane_pieces", plane_pieces);
+  if (grid_planes > 0) stats.add(prefix + ".grid_planes", grid_planes);
 }
 
 bool trace_plane_pass(const scene::Scene& scene, const PhotonTraceParams& params, const std::atomic<bool>* stop,
@@ -44,6 +45,7 @@ bool trace_plane_pass(const scene::Scene& scene, const PhotonTraceParams& params
   counters.planes_stored += plc.stored;
   counters.planes_clipped += plc.clipped;
   counters.plane_dropped += plc.dropped;
+  counters.grid_planes += plc.grid;
   // Beam pieces as `beam`'s; plane pieces >= piece_scale x diag.
   const float piece = beam_piece_length(scene, beams, radius);
   beam_bvh.build(std::move(beams), piece);

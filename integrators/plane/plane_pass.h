@@ -18,7 +18,8 @@ namespace dp::integrators {
 struct PlanePassCounters {
   int64_t beams_stored = 0, beams_to_planes = 0, beams_clipped = 0, beam_nan_dropped = 0;
   int64_t planes_stored = 0, planes_clipped = 0, plane_dropped = 0, beam_pieces = 0, plane_pieces = 0;
-  // Adds <prefix>.beams_stored, ... (every key, also when 0).
+  int64_t grid_planes = 0;  // of planes_stored, those in grid media (photon_plane.h, record_plane_grid)
+  // Adds <prefix>.beams_stored, ... (every key, also when 0; grid_planes only when > 0).
   void flush(core::Stats& stats, const std::string& prefix) const;
 };
 

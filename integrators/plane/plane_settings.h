@@ -13,7 +13,8 @@
 
 namespace dp::integrators {
 
-// Deliberate defects the tests must reject (test_plane.cpp, test_plane_render.cpp). C++
+// Deliberate defects the tests must reject (test_plane.cpp, test_plane_render.cpp,
+// test_plane_grid.cpp). C++
 // only: never read from settings; the default leaves every image bit-identical.
 enum class PlaneFault : uint8_t {
   none,
@@ -22,6 +23,11 @@ enum class PlaneFault : uint8_t {
   no_occlusion,            // no shadow ray from a1(t0) to the plane point
   no_pass_probability,     // Tr(t1) without the 1 / P_pass(t1) of the short extent D
   beams_after_scatter,     // the beam part also gathers beams that start at a scattering event (counted twice)
+  // Grid media (test_plane_grid.cpp):
+  grid_no_camera_transmittance,  // the camera side's ratio-tracked Tr_c taken as 1
+  grid_sigma_s_majorant,         // sigma_s of the grid's maximum density at a1 and b, not the density there
+  grid_no_w1_transmittance,      // the ratio product along w1 (Tr from a1 to b) taken as 1
+  grid_no_w1_roulette,           // the factors along w1 not divided by their survival probability c
 };
 
 struct PlaneSettings : MediaPhotonSettings {

@@ -63,9 +63,11 @@ void DensityGrid::finalize(const std::string& where) {
   if (!is_finite(lo) || !is_finite(hi) || !((hi - lo).minCoeff() > 0.0f))
     throw ParseError("density grid bounds must be finite with hi > lo on every axis", where);
   max_value = 0.0f;
+  min_value = kInfinity;
   for (float v : values) {
     if (!(v >= 0.0f) || !std::isfinite(v)) throw ParseError("density grid values must be finite and >= 0", where);
     max_value = std::max(max_value, v);
+    min_value = std::min(min_value, v);
   }
 }
 

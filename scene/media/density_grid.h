@@ -21,12 +21,13 @@ struct DensityGrid {
   Vec3 lo{0, 0, 0}, hi{1, 1, 1};  // world-space box the lattice spans
   std::vector<float> values;      // nx*ny*nz, >= 0
   float max_value = 0;            // the majorant's density
+  float min_value = 0;            // the smallest node value (inside the box the density is >= it)
 
   // Trilinear density at world point p (0 outside the box).
   float lookup(const Vec3& p) const;
   // The ray's parameter interval [t0, t1] inside the box, clipped to [0, t_max]; false if empty.
   bool clip(const Vec3& o, const Vec3& d, float t_max, float& t0, float& t1) const;
-  // Checks sizes, values (finite, >= 0) and bounds, sets max_value; `where` names the source in errors.
+  // Checks sizes, values (finite, >= 0) and bounds, sets max_value and min_value; `where` names the source in errors.
   void finalize(const std::string& where);
 };
 

@@ -65,5 +65,5 @@ TEST_CASE("integrators without grid media support refuse a scene with grid media
       CHECK(msg.find('\n') == std::string::npos);
     }
   }
-  CHECK(capable == std::set<std::string>{"path", "volpath", "bdpt", "vpm", "bre", "beam"});
+  CHECK(capable == std::set<std::string>{"path", "volpath", "bdpt", "vpm", "bre", "beam", "plane"});
 }
