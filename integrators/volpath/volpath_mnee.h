@@ -75,6 +75,23 @@ struct MneeAnchor {
   int medium = -1;         // the medium the path arrived in (medium: the point's)
   int depth = 0;           // segments up to x (volpath's depth at the vertex)
   const Vec3& position() const { return surface ? hit.p : p; }
+  static MneeAnchor at_surface(const scene::SurfaceHit& hit, const Vec3& wi_local, int medium, int depth) {
+    MneeAnchor x;
+    x.surface = true;
+    x.hit = hit;
+    x.wi_local = wi_local;
+    x.medium = medium;
+    x.depth = depth;
+    return x;
+  }
+  static MneeAnchor in_medium(const Vec3& p, const Vec3& d_in, int medium, int depth) {
+    MneeAnchor x;
+    x.p = p;
+    x.d_in = d_in;
+    x.medium = medium;
+    x.depth = depth;
+    return x;
+  }
 };
 
 // What NEE at a vertex tells MNEE: the light point it sampled, and whether the straight

@@ -225,13 +225,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           if (m_mnee) {  // NEE, then MNEE with its light sample (volpath_mnee.h)
             NeeProbe probe;
             L += beta * next_event_medium(p, ray.d, medium, rng, c, &probe);
-            chain.active = true;
-            chain.m = 0;
-            chain.anchor.surface = false;
-            chain.anchor.p = p;
-            chain.anchor.d_in = ray.d;
-            chain.anchor.medium = medium;
-            chain.anchor.depth = depth;
+            chain.start(MneeAnchor::in_medium(p, ray.d, medium, depth));
             if (probe.area_light) L += beta * mnee_nee(chain.anchor, probe, rng, c);
           } else if (m_settings.nee) {
             L += beta * next_event_medium(p, ray.d, medium, rng, c);
@@ -300,15 +294,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (m_settings.nee && !hit.bsdf->is_purely_delta()) {
       NeeProbe probe;
       L += beta * next_event_surface<kMedia>(hit, wi_local, ctx, medium, rng, c, kMedia && m_mnee ? &probe : nullptr);
-      if (kMedia && probe.area_light) {  // MNEE with NEE's light sample (volpath_mnee.h)
-        MneeAnchor x;
-        x.surface = true;
-        x.hit = hit;
-        x.wi_local = wi_local;
-        x.medium = medium;
-        x.depth = depth;
-        L += beta * mnee_nee(x, probe, rng, c);
-      }
+      if (kMedia && probe.area_light)  // MNEE with NEE's light sample (volpath_mnee.h)
+        L += beta * mnee_nee(MneeAnchor::at_surface(hit, wi_local, medium, depth), probe, rng, c);
     }
 
     const float u_lobe = rng.uniform();
@@ -319,14 +306,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (!consistent_side(hit, wo, bs->wo.z())) break;
     if (kMedia && m_mnee) {  // the anchor x, or one more refraction after it (volpath_mnee.h)
       if (!bs->is_delta()) {
-        chain.active = true;
-        chain.m = 0;
-        chain.anchor.surface = true;
-        chain.anchor.hit = hit;
-        chain.anchor.wi_local = wi_local;
-        chain.anchor.medium = medium;
-        chain.anchor.depth = depth;
-        chain.reflect_mask = 0;
+        chain.start(MneeAnchor::at_surface(hit, wi_local, medium, depth));
       } else if (chain.active && chain.m < kMaxMneeChain &&
                  (bs->lobe == scene::kDeltaReflection || (bs->lobe == scene::kDeltaTransmission && bs->eta != 1.0f))) {
         if (bs->lobe == scene::kDeltaReflection) chain.reflect_mask |= 1u << chain.m;

@@ -107,6 +107,12 @@ class VolpathTracer {
     int m = 0;
     uint32_t reflect_mask = 0;
     std::array<Vec3, kMaxMneeChain> verts{};
+    void start(const MneeAnchor& x) {  // a new anchor: no Dirac vertex after it yet
+      active = true;
+      anchor = x;
+      m = 0;
+      reflect_mask = 0;
+    }
   };
   // One seed direction d's solution of a chain of m Dirac vertices (bit i of `mask`: vertex
   // i + 1 reflects, else refracts), all on `shape` unless it is -1.

@@ -19,6 +19,7 @@
 #include "integrators/volpath/volpath_tracer.h"
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
+#include "tests/support/quiet_options.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
 
@@ -34,14 +35,8 @@ BlockMeans blocks(const scene::Scene& s, const integrators::VolpathSettings& vs,
   const int nb = kRes / kBlock;
   BlockMeans out(size_t(nb * nb));
   for (int r = 0; r < kRuns; ++r) {
-    integrators::RenderOptions opt;
-    opt.spp = kSpp;
-    opt.seed = seed0 + uint64_t(r);
-    opt.threads = 2;
-    opt.max_depth = kDepth;
-    opt.quiet = true;
     integrators::VolpathIntegrator in(vs);
-    integrators::RenderResult res = in.render(s, opt);
+    integrators::RenderResult res = in.render(s, test::quiet_options(kSpp, seed0 + uint64_t(r), kDepth));
     const core::Image& img = res.layers[0].image;
     for (int by = 0; by < nb; ++by)
       for (int bx = 0; bx < nb; ++bx) {
