@@ -9,6 +9,27 @@
 
 namespace dp::integrators {
 
+namespace {
+// A plane with every field but the grid's (record_plane, record_plane_grid).
+MediumPlane new_plane(const Vec3& a0, const Vec3& w0, const Vec3& w1, float t0_begin, float t0_end, float t1_end,
+                      float p_scatter, float q, const Rgb& beta, int depth_b, int medium, size_t index) {
+  MediumPlane pl;
+  pl.a0 = a0;
+  pl.w0 = w0;
+  pl.w1 = w1;
+  pl.t0_begin = t0_begin;
+  pl.t0_end = t0_end;
+  pl.t1_end = t1_end;
+  pl.p_scatter = p_scatter;
+  pl.q = q;
+  pl.beta = beta;
+  pl.depth = int16_t(depth_b);
+  pl.medium = int16_t(medium);
+  pl.index = uint32_t(index);
+  return pl;
+}
+}  // namespace
+
 float free_flight_distance(const scene::HomogeneousMedium& med, float u_channel, float u) {
   const int c = std::min(int(u_channel * 3.0f), 2);  // as sample_free_flight
   const float st = med.sigma_t()[c];
@@ -53,20 +74,7 @@ void record_plane(const scene::Scene& scene, const scene::HomogeneousMedium& med
     return;
   }
   if (clipped) ++counters.clipped;
-  MediumPlane pl;
-  pl.a0 = a0;
-  pl.w0 = w0;
-  pl.w1 = w1;
-  pl.t0_begin = t0b;
-  pl.t0_end = t0e;
-  pl.t1_end = t1e;
-  pl.p_scatter = p_scatter;
-  pl.q = q;
-  pl.beta = beta_a0;
-  pl.depth = int16_t(depth_b);
-  pl.medium = int16_t(medium);
-  pl.index = uint32_t(planes.size());
-  planes.push_back(pl);
+  planes.push_back(new_plane(a0, w0, w1, t0b, t0e, t1e, p_scatter, q, beta_a0, depth_b, medium, planes.size()));
   ++counters.stored;
 }
 
@@ -124,19 +132,7 @@ void record_plane_grid(const scene::HomogeneousMedium& med, const Vec3& a0, cons
     }
     t1s.push_back(t);
   }
-  MediumPlane pl;
-  pl.a0 = a0;
-  pl.w0 = w0;
-  pl.w1 = w1;
-  pl.t0_begin = tb;
-  pl.t0_end = te;
-  pl.t1_end = t1e;
-  pl.p_scatter = p_rec;
-  pl.q = 1.0f;
-  pl.beta = beta_a0;
-  pl.depth = int16_t(depth_b);
-  pl.medium = int16_t(medium);
-  pl.index = uint32_t(planes.size());
+  MediumPlane pl = new_plane(a0, w0, w1, tb, te, t1e, p_rec, 1.0f, beta_a0, depth_b, medium, planes.size());
   pl.grid_n0 = uint32_t(t0s.size());
   pl.grid_c = c;
   pl.grid.reserve(2 * t0s.size() + t1s.size());
