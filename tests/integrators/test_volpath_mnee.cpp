@@ -3,7 +3,8 @@
 // through the ball (L S+ D and L S+ M paths), plus the light reflected off it. MNEE with
 // its MIS against BSDF/phase sampling must leave the image unchanged in expectation:
 // volpath with MNEE (refraction and reflection chains) against volpath without it, per
-// 8 x 8 block, Welch's test over independent runs with a Sidak-corrected family level.
+// 8 x 8 block and the image mean, Welch's test over independent runs with a Sidak-corrected
+// family level.
 // Two real defects must be rejected by the same test: MNEE without MIS (the paths both
 // strategies sample counted twice) and a planar D (1 / |y - s_m|^2 instead of the
 // generalized geometry term d w_0 / dA(y)).
@@ -19,6 +20,7 @@
 #include "integrators/volpath/volpath_tracer.h"
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
+#include "tests/support/block_stats.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/welch.h"
@@ -28,23 +30,14 @@ using namespace dp;
 namespace {
 
 constexpr int kRes = 32, kBlock = 8, kRuns = 10, kSpp = 16, kDepth = 6;
-using BlockMeans = std::vector<std::vector<double>>;  // [block][run]
-
-BlockMeans blocks(const scene::Scene& s, const integrators::VolpathSettings& vs, uint64_t seed0,
-                  integrators::RenderResult* last = nullptr) {
-  const int nb = kRes / kBlock;
-  BlockMeans out(size_t(nb * nb));
+// [0][run]: the image mean, [1 + b][run]: block b's mean (tests/support/block_stats.h).
+test::BlockStats blocks(const scene::Scene& s, const integrators::VolpathSettings& vs, uint64_t seed0,
+                        integrators::RenderResult* last = nullptr) {
+  test::BlockStats out;
   for (int r = 0; r < kRuns; ++r) {
     integrators::VolpathIntegrator in(vs);
     integrators::RenderResult res = in.render(s, test::quiet_options(kSpp, seed0 + uint64_t(r), kDepth));
-    const core::Image& img = res.layers[0].image;
-    for (int by = 0; by < nb; ++by)
-      for (int bx = 0; bx < nb; ++bx) {
-        double sum = 0;
-        for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
-          for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) sum += double(img(x, y).sum());
-        out[size_t(by * nb + bx)].push_back(sum / (kBlock * kBlock));
-      }
+    test::add_block_run(out, res.layers[0].image, kBlock);
     if (last) *last = std::move(res);
   }
   return out;
@@ -162,8 +155,8 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   on.mnee = true;
   on.mnee_shapes = true;
   integrators::RenderResult last;
-  const BlockMeans plain = blocks(*s, off, 100);
-  const BlockMeans mnee = blocks(*s, on, 200, &last);
+  const test::BlockStats plain = blocks(*s, off, 100);
+  const test::BlockStats mnee = blocks(*s, on, 200, &last);
   // It did what the scene asks for: chains solved on the NEE side, and BSDF/phase paths
   // through the ball that MNEE also returns (so both MIS weights were exercised).
   CHECK(last.stats.get("volpath.mnee.chains") > 0);
