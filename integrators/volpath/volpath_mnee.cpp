@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
+#include "gradients/shift_helpers.h"  // d3
 #include "integrators/volpath/volpath_tracer.h"
 #include "manifold/constraints.h"
 #include "manifold/local_geometry.h"
@@ -16,11 +17,10 @@
 
 namespace dp::integrators {
 
+using gradients::d3;
 using scene::SurfaceHit;
 
 namespace {
-
-Vec3d d3(const Vec3& v) { return v.cast<double>(); }
 
 bool reflects(const SurfaceHit& h) {
   return h.bsdf && h.bsdf->is_purely_delta() && (h.bsdf->lobes() & scene::kDeltaReflection) != 0;
@@ -46,6 +46,9 @@ Ray leave(const scene::Scene& scene, const MneeAnchor& x, const Vec3& w) {
   r.tmax = kInfinity;
   return r;
 }
+
+// Vertices closer than this are the same solution (and a BSDF path MNEE's).
+float match_tolerance(const scene::Scene& scene) { return 1e-3f * std::max(1.0f, scene.scene_radius()); }
 
 // Two chains with the same refractions at the same places (within tol).
 bool same_chain(const MneeConnection& a, const MneeConnection& b, float tol) {
@@ -90,12 +93,8 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   const float dist = d.norm();
   if (max_chain < 1 || !(dist > 0.0f)) return out;
   d /= dist;
-  const float tol = 1e-3f * std::max(1.0f, m_scene.scene_radius());
-  auto add = [&](const MneeConnection& X) {
-    if (!X.ok || out.count == kMaxMneeSolutions) return;
-    for (int i = 0; i < out.count; ++i)
-      if (same_chain(out.x[size_t(i)], X, tol)) return;
-    out.x[size_t(out.count++)] = X;
+  auto add = [&](const MneeConnection& X) {  // distinct: mnee_solve skips the ones in `out`
+    if (X.ok && out.count < kMaxMneeSolutions) out.x[size_t(out.count++)] = X;
   };
   // The straight segment x -> y: its refractive boundaries fix m (the straight family);
   // anything else blocks it.
@@ -130,10 +129,10 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
       const float radius = 0.5f * (b.hi - b.lo).minCoeff();
       const Vec3 bis = (xp - centre).normalized() + (y - centre).normalized();
       const Vec3 seed = (centre + radius * bis.normalized() - xp).normalized();
-      if (bis.squaredNorm() > 1e-8f && seed.allFinite()) add(mnee_solve(x, y, n_y, 1, 1u, shape, seed, rng, c));
+      if (bis.squaredNorm() > 1e-8f && seed.allFinite()) add(mnee_solve(x, y, n_y, 1, 1u, shape, seed, out, rng, c));
     }
     if ((bsdf.lobes() & scene::kDeltaTransmission) != 0 && max_chain >= 2 && !(straight && first == shape && m == 2)) {
-      auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, rng, c)); };
+      auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, out, rng, c)); };
       through((centre - xp).normalized());
       for_seeds(xp, y, b, through);
     }
@@ -143,14 +142,15 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   // The straight family: the straight direction, then directions across the first
   // refractive shape.
   ++c.mnee_chains;
-  add(mnee_solve(x, y, n_y, m, 0u, -1, d, rng, c));
+  add(mnee_solve(x, y, n_y, m, 0u, -1, d, out, rng, c));
   for_seeds(xp, y, m_scene.shapes()[size_t(first)]->bounds(),
-            [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, rng, c)); });
+            [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); });
   return out;
 }
 
 MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask,
-                                         int shape, const Vec3& d, core::Rng& rng, VolpathCounters& c) const {
+                                         int shape, const Vec3& d, const MneeSolutions& found, core::Rng& rng,
+                                         VolpathCounters& c) const {
   MneeConnection out;
   auto reflection = [&](int i) { return ((mask >> i) & 1u) != 0; };
   auto lobe = [&](int i) { return reflection(i) ? scene::kDeltaReflection : scene::kDeltaTransmission; };
@@ -221,6 +221,11 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
   // The solved chain re-traced in float: f, the lobes' densities, Tr, the light.
   const float tol = 1e-4f * std::max(1.0f, m_scene.scene_radius());
   for (int i = 0; i < m; ++i) out.verts[size_t(i)] = X.v[size_t(i + 1)].p().cast<float>();
+  out.m = m;
+  out.reflect_mask = mask;
+  // A solution another seed already reached is not evaluated again.
+  for (int i = 0; i < found.count; ++i)
+    if (same_chain(found.x[size_t(i)], out, match_tolerance(m_scene))) return MneeConnection{};
   const Vec3 w0 = (out.verts[0] - xp).normalized();
   Rgb f;
   double p = 0.0;
@@ -273,8 +278,6 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
   out.p_bsdf = p * D;
   out.D = D;
   out.s1 = X.v[1].p();
-  out.m = m;
-  out.reflect_mask = mask;
   out.ok = is_finite(out.value) && std::isfinite(out.p_bsdf);
   return out;
 }
@@ -302,7 +305,7 @@ float VolpathTracer::mnee_bsdf_weight(const ChainTrack& chain, const SurfaceHit&
   path.m = chain.m;
   path.reflect_mask = chain.reflect_mask;
   path.verts = chain.verts;
-  const float tol = 1e-3f * std::max(1.0f, m_scene.scene_radius());
+  const float tol = match_tolerance(m_scene);
   for (int i = 0; i < S.count; ++i) {
     const MneeConnection& X = S.x[size_t(i)];
     if (!same_chain(X, path, tol)) continue;

@@ -115,9 +115,11 @@ class VolpathTracer {
     }
   };
   // One seed direction d's solution of a chain of m Dirac vertices (bit i of `mask`: vertex
-  // i + 1 reflects, else refracts), all on `shape` unless it is -1.
+  // i + 1 reflects, else refracts), all on `shape` unless it is -1; none if it repeats one
+  // of `found`.
   MneeConnection mnee_solve(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,
-                            const Vec3& d, core::Rng& rng, VolpathCounters& counters) const;
+                            const Vec3& d, const MneeSolutions& found, core::Rng& rng,
+                            VolpathCounters& counters) const;
   // Calls f(direction) for MNEE's seed directions across the bounds b (mnee_seeds - 1).
   template <typename F>
   void for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const;
