@@ -268,10 +268,10 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
     r = m_scene.continue_ray(h, wo);
   }
   const Rgb Le = h.emitter->eval(h, -r.d);
-  const Vec3 straight = y - xp;
-  const float dist = straight.norm();
-  const double p_light = double(m_scene.emitter_pmf(h.emitter)) * double(h.emitter->pdf_direct(xp, y, n_y, straight / dist)) *
-                         double(std::abs(n_y.normalized().dot(straight / dist))) / (double(dist) * double(dist));
+  // NEE's area density of y from x (of the straight line only for cone-sampled spheres):
+  // y may lie behind the light as seen straight from x (set_probe).
+  const double p_light =
+      double(m_scene.emitter_pmf(h.emitter)) * double(h.emitter->pdf_area_direct(xp, y, n_y.normalized()));
   if (is_black(Le) || is_black(tr_all) || !(p_light > 0.0) || !std::isfinite(p_light)) return out;
   out.value = f * tr_all * Le * float(D / p_light);
   out.p_light = p_light;

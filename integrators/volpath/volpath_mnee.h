@@ -53,6 +53,7 @@
 
 #include "core/math.h"
 #include "scene/bsdf/bsdf.h"
+#include "scene/emitters/emitter.h"
 #include "scene/surface.h"
 
 namespace dp::integrators {
@@ -101,6 +102,15 @@ struct NeeProbe {
   Vec3 y{0, 0, 0}, n{0, 0, 1};
   bool try_chain = false;
 };
+
+// Records NEE's light sample for MNEE when it is a point of an area light, whichever side
+// of it the vertex sees: a chain may turn around (a reflection off a ball below a light
+// facing down lights the ceiling behind it). try_chain stays true until NEE's shadow ray
+// says otherwise; NEE returns before tracing one when the straight direction carries
+// nothing (the light's back, a zero BSDF or phase value), and then MNEE traces it.
+inline void set_probe(NeeProbe& probe, const scene::DirectSample& ds) {
+  if (!ds.delta && std::isfinite(ds.dist) && ds.pdf_area > 0.0f) probe = NeeProbe{true, ds.p, ds.n, true};
+}
 
 // The most seeds (hence solutions) per connection (VolpathSettings::mnee_seeds).
 constexpr int kMaxMneeSeeds = 9;

@@ -119,9 +119,10 @@ Rgb VolpathTracer::next_event_surface(const SurfaceHit& hit, const Vec3& wi_loca
   const scene::Emitter* emitter = m_scene.sample_emitter(u_light, pmf);
   if (!emitter) return Rgb::Zero();
   const scene::DirectSample ds = emitter->sample_direct(hit.p, u);
+  // MNEE may reach the light point where the straight direction has no contribution,
+  // even from behind the light (a chain turns around: a reflection off a ball below it).
+  if (probe) set_probe(*probe, ds);
   if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
-  // MNEE may refract where the straight direction has no contribution.
-  if (probe && !ds.delta && std::isfinite(ds.dist)) *probe = NeeProbe{true, ds.p, ds.n, true};
   const Vec3 wo_local = hit.shading.to_local(ds.wi);
   if (!consistent_side(hit, ds.wi, wo_local.z())) return Rgb::Zero();
   float bsdf_pdf;  // pdf of sampling wo by the BSDF, for the MIS weight
@@ -159,8 +160,8 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   const scene::Emitter* emitter = m_scene.sample_emitter(u_light, pmf);
   if (!emitter) return Rgb::Zero();
   const scene::DirectSample ds = emitter->sample_direct(p, u);
+  if (probe) set_probe(*probe, ds);  // as next_event_surface
   if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
-  if (probe && !ds.delta && std::isfinite(ds.dist)) *probe = NeeProbe{true, ds.p, ds.n, true};
   // The medium vertex's rho = sigma_s * rho_p (Gruson et al. 2018, Eq. 3); sigma_s is
   // already in the throughput (free-flight weight), G has no cosines here (Eq. 4).
   const float phase = scene::HenyeyGreenstein(m_scene.media()[size_t(medium)].phase).eval(d, ds.wi);

@@ -7,6 +7,11 @@
 //    directional (delta in direction).
 //  * pdf_direct(ref, point): solid-angle density of sample_direct choosing that point
 //    (area emitters) or direction (environment).
+//  * pdf_area_direct(ref, p, n): area density with which sample_direct(ref) returns the
+//    point p of normal n, whichever side of it ref sees (sample_direct still samples a
+//    point behind the emitter, only with pdf = 0 and no radiance): what a connection that
+//    reaches p other than straight from ref (MNEE's refraction chains) needs. 0 for delta
+//    and infinite emitters.
 //  * Area emitters emit from the front side only (the side of the geometric normal).
 #pragma once
 
@@ -47,6 +52,10 @@ class Emitter {
   // Area: `p`,`n` a point on the emitter; environment: `p` unused, `n` unused, `w` =
   // direction from ref toward the emitter. Delta emitters return 0.
   virtual float pdf_direct(const Vec3& ref, const Vec3& p, const Vec3& n, const Vec3& w) const = 0;
+  virtual float pdf_area_direct(const Vec3& ref, const Vec3& p, const Vec3& n) const {
+    (void)ref; (void)p; (void)n;
+    return 0.0f;
+  }
   // Radiance leaving an area emitter at surface point `sp` toward unit direction `w`.
   virtual Rgb eval(const SurfacePoint& sp, const Vec3& w) const { (void)sp; (void)w; return Rgb::Zero(); }
   // Total emitted power (W), used for light selection and statistics.
@@ -63,6 +72,7 @@ class AreaEmitter final : public Emitter {
   EmitterKind kind() const override { return EmitterKind::area; }
   DirectSample sample_direct(const Vec3& ref, const Vec2& u) const override;
   float pdf_direct(const Vec3& ref, const Vec3& p, const Vec3& n, const Vec3& w) const override;
+  float pdf_area_direct(const Vec3& ref, const Vec3& p, const Vec3& n) const override;
   Rgb eval(const SurfacePoint& sp, const Vec3& w) const override;
   Rgb power() const override;
   const Rgb& radiance() const { return m_radiance; }

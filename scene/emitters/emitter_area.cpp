@@ -126,6 +126,24 @@ float AreaEmitter::pdf_direct(const Vec3& ref, const Vec3& p, const Vec3& n, con
   return std::isfinite(pdf) ? pdf : 0.0f;
 }
 
+float AreaEmitter::pdf_area_direct(const Vec3& ref, const Vec3& p, const Vec3& n) const {
+  if (m_shape->kind() == ShapeKind::sphere) {
+    const auto& sphere = static_cast<const Sphere&>(*m_shape);
+    const SphereCone cone = sphere_cone(sphere, ref);
+    if (cone.valid) {  // cone sampling reaches only the near side's points
+      if (sphere.flip_normals) return 0.0f;
+      const Vec3 d = p - ref;
+      const float dist2 = d.squaredNorm();
+      const float cos_l = -n.dot(d) / std::sqrt(dist2);
+      if (!(dist2 > 0.0f) || !(cos_l > 0.0f)) return 0.0f;
+      const float pdf = cone_pdf(cone) * cos_l / dist2;
+      return std::isfinite(pdf) ? pdf : 0.0f;
+    }
+  }
+  const float area = m_shape->area();  // uniform by area, independent of ref
+  return area > 0.0f ? 1.0f / area : 0.0f;
+}
+
 Rgb AreaEmitter::eval(const SurfacePoint& sp, const Vec3& w) const {
   return sp.ng.dot(w) > 0.0f ? m_radiance : Rgb::Zero();
 }
