@@ -5,6 +5,8 @@
 // segments: a directly visible light is a path of depth 1.
 #pragma once
 
+#include <cmath>
+
 #include "core/rng.h"
 #include "core/stats.h"
 #include "integrators/path/path_settings.h"
@@ -42,6 +44,14 @@ class PathTracer {
 inline float power_heuristic(float pdf_a, float pdf_b) {
   const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
   return a > 0.0f ? a / (a + b) : 0.0f;
+}
+
+// The same for three strategies: pdf_a^2 / (pdf_a^2 + pdf_b^2 + pdf_c^2), in double (the
+// densities' ratios can be large); 1 for an infinite pdf_a.
+inline float power_heuristic(float pdf_a, float pdf_b, float pdf_c) {
+  if (std::isinf(pdf_a)) return 1.0f;
+  const double a = double(pdf_a) * double(pdf_a), b = double(pdf_b) * double(pdf_b), c = double(pdf_c) * double(pdf_c);
+  return a > 0.0 ? float(a / (a + b + c)) : 0.0f;
 }
 
 }  // namespace dp::integrators

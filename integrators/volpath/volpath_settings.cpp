@@ -11,6 +11,10 @@ VolpathSettings VolpathSettings::read(Settings& s) {
                      "next-event estimation at surface and medium vertices, transmittance along the shadow ray, "
                      "power-heuristic MIS with BSDF/phase sampling (false: BSDF and phase sampling only)");
   v.hide_emitters = s.get_bool("hide_emitters", v.hide_emitters, "do not show emitters seen directly by the camera");
+  v.equiangular = s.get_bool("equiangular", v.equiangular,
+                             "next-event estimation also at one point per camera-path segment in a homogeneous "
+                             "medium drawn by equiangular sampling toward a light point, MIS-weighted with "
+                             "free-flight NEE and phase sampling (Kulla & Fajardo 2012; needs nee)");
   v.mnee = s.get_bool("mnee", v.mnee,
                       "manifold next-event estimation: light seen through refractive surfaces (glass) is sampled "
                       "by a manifold walk from medium and surface vertices, MIS-weighted with BSDF/phase sampling "

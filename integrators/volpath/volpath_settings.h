@@ -19,12 +19,14 @@ enum class VolpathFault : uint8_t {
   medium_nee_without_mis,     // NEE at medium vertices weighted 1 (phase sampling still MIS-weighted)
   mnee_without_mis,           // MNEE and the paths it can also sample both weighted 1 (counted twice)
   mnee_planar_geometry,       // MNEE's D = 1 / |y - s_m|^2, the unrefracted last segment's
+  equiangular_without_mis,    // equiangular NEE weighted 1 (free-flight NEE and phase hits still MIS-weighted)
 };
 
 struct VolpathSettings {
   int rr_depth = 5;     // Russian roulette starts after this many segments
   bool nee = true;      // next-event estimation (light sampling) with MIS, at surface and medium vertices
   bool hide_emitters = false;  // drop directly visible emitters (depth 1)
+  bool equiangular = true;     // equiangular NEE per medium segment, MIS with free flight (volpath_equiangular.cpp)
   bool mnee = true;            // manifold NEE through refractive surfaces (volpath_mnee.h; scenes with media)
   int mnee_max_chain = 4;      // most refractions MNEE solves for (1 .. kMaxMneeChain)
   bool mnee_shapes = false;  // MNEE also seeds at each specular shape (<= 4): a reflection off it, two refractions through it

@@ -28,6 +28,9 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.fail.null_limit", null_limit);
   stats.add("volpath.media_skipped", media_skipped);
   stats.add("volpath.grid_flights", grid_flights);
+  stats.add("volpath.equiangular.samples", equiangular_samples);
+  stats.add("volpath.equiangular.skipped", equiangular_skipped);
+  stats.add("volpath.equiangular.occluded", equiangular_occluded);
   stats.add("volpath.mnee.attempts", mnee_attempts);
   stats.add("volpath.mnee.chains", mnee_chains);
   stats.add("volpath.mnee.shape_attempts", mnee_shape_attempts);
@@ -63,7 +66,8 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
       m_max_depth(max_depth),
       m_has_media(scene.caps().has_media),
       m_camera_medium(scene.camera_medium()),
-      m_mnee(false) {
+      m_mnee(false),
+      m_equiangular(m_has_media && settings.equiangular && settings.nee) {
   if (!m_has_media || !settings.mnee || !settings.nee) return;
   for (const auto& b : scene.bsdfs())
     if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaTransmission) != 0) m_mnee = true;
@@ -153,7 +157,7 @@ template Rgb VolpathTracer::next_event_surface<false>(const SurfaceHit&, const V
                                                       core::Rng&, VolpathCounters&, NeeProbe*) const;
 
 Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng, VolpathCounters& c,
-                                     NeeProbe* probe) const {
+                                     NeeProbe* probe, const FlightSegment* flight) const {
   const float u_light = rng.uniform();
   const Vec2 u = rng.uniform2();
   float pmf;
@@ -180,8 +184,11 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
   if (probe) probe->try_chain = end == MarchEnd::surface && mnee_refracts(blocker);
   if (end != MarchEnd::reached || is_black(tr)) return Rgb::Zero();
   const float light_pdf = pmf * ds.pdf;
-  const bool no_mis = ds.delta || m_settings.fault == VolpathFault::medium_nee_without_mis;
-  const float weight = no_mis ? 1.0f : power_heuristic(light_pdf, phase);  // phase pdf == phase value
+  // MIS with phase sampling and, on a flight segment, equiangular sampling
+  // (volpath_equiangular.cpp); the phase pdf is the phase value.
+  const float R = flight ? equiangular_ratio(*flight, *emitter, pmf, ds.p, ds.n) : 0.0f;
+  float weight = ds.delta ? power_heuristic(1.0f, R, 0.0f) : power_heuristic(light_pdf, phase, R);
+  if (m_settings.fault == VolpathFault::medium_nee_without_mis) weight = 1.0f;
   return tr * ds.radiance * (phase * weight / light_pdf);
 }
 
@@ -201,19 +208,23 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
   // rule of every integrator and shift, Scene::trace_from; ray.o is then that vertex.
   bool from_surface = false;
   ChainTrack chain;  // MNEE's view of the path since its last non-specular vertex
+  FlightSegment flight;  // the last vertex's free-flight segment, if it was a medium vertex (equiangular MIS)
   for (int depth = 1; depth <= m_max_depth;) {
     const bool found = from_surface ? m_scene.trace_from(hit, ray.d, hit) : m_scene.intersect(ray, hit);
     ++c.rays;
     if constexpr (kMedia) {
       if (medium >= 0) {
         const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
+        const float t_max = found ? hit.t : kInfinity;
+        const bool equiangular = m_equiangular && !med.heterogeneous() && depth < m_max_depth;
+        if (equiangular) L += beta * next_event_equiangular(ray, t_max, medium, rng, c);
         scene::FreeFlightSample ff;
         if (med.heterogeneous()) {  // delta tracking (grid_tracking.h)
           ++c.grid_flights;
-          ff = scene::sample_free_flight_grid(med, ray.o, ray.d, found ? hit.t : kInfinity, rng);
+          ff = scene::sample_free_flight_grid(med, ray.o, ray.d, t_max, rng);
         } else {
           const float u_channel = rng.uniform(), u_distance = rng.uniform();
-          ff = scene::sample_free_flight(med, found ? hit.t : kInfinity, u_channel, u_distance);
+          ff = scene::sample_free_flight(med, t_max, u_channel, u_distance);
         }
         Rgb w = ff.weight;
         if (m_settings.fault == VolpathFault::pass_without_probability && !ff.scattered)
@@ -223,13 +234,16 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           ++c.medium_scatter;
           if (depth == m_max_depth || is_black(beta)) break;
           const Vec3 p = ray.at(ff.t);
+          flight = FlightSegment{};
+          if (equiangular) flight = FlightSegment{true, ray.o, ray.d, t_max, ff.t, scene::free_flight_pdf(med, ff.t)};
+          const FlightSegment* fs = flight.active ? &flight : nullptr;
           if (m_mnee) {  // NEE, then MNEE with its light sample (volpath_mnee.h)
             NeeProbe probe;
-            L += beta * next_event_medium(p, ray.d, medium, rng, c, &probe);
+            L += beta * next_event_medium(p, ray.d, medium, rng, c, &probe, fs);
             chain.start(MneeAnchor::in_medium(p, ray.d, medium, depth));
             if (probe.area_light) L += beta * mnee_nee(chain.anchor, probe, rng, c);
           } else if (m_settings.nee) {
-            L += beta * next_event_medium(p, ray.d, medium, rng, c);
+            L += beta * next_event_medium(p, ray.d, medium, rng, c, nullptr, fs);
           }
           const scene::HenyeyGreenstein phase(med.phase);
           const Vec3 wo = phase.sample(ray.d, rng.uniform2());
@@ -266,8 +280,10 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
       if (!is_black(Le)) {
         float w = 1.0f;
         if (!prev_delta && m_settings.nee) {
-          const float light_pdf = m_scene.emitter_pmf(hit.emitter) * hit.emitter->pdf_direct(prev_p, hit.p, hit.ng, ray.d);
-          w = power_heuristic(prev_pdf, light_pdf);
+          const float pmf = m_scene.emitter_pmf(hit.emitter);
+          const float light_pdf = pmf * hit.emitter->pdf_direct(prev_p, hit.p, hit.ng, ray.d);
+          const float R = flight.active ? equiangular_ratio(flight, *hit.emitter, pmf, hit.p, hit.ng) : 0.0f;
+          w = power_heuristic(prev_pdf, light_pdf, R);
         } else if (kMedia && m_mnee && chain.active && chain.m > 0) {
           w = mnee_bsdf_weight(chain, hit, rng, c);
         }
@@ -317,6 +333,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
       }
     }
     beta *= bs->weight;
+    flight.active = false;
     prev_delta = bs->is_delta();
     prev_pdf = bs->pdf;
     prev_p = hit.p;

@@ -55,6 +55,10 @@ struct VolpathCounters {
   int64_t mnee_connections = 0;  // contributions added
   int64_t mnee_bsdf_hits = 0;    // BSDF/phase paths reaching a light through refractions only
   int64_t mnee_bsdf_matched = 0; // ... that MNEE also returns (weighted by MIS, else 1)
+  // Equiangular NEE (volpath_equiangular.cpp).
+  int64_t equiangular_samples = 0;   // segments with an equiangular light connection
+  int64_t equiangular_skipped = 0;   // ... none: a light at infinity drawn, or y on the ray's line
+  int64_t equiangular_occluded = 0;  // the connection was blocked
   manifold::WalkStats mnee_walks;  // MNEE's manifold walks (volpath.mnee.walk.*)
   manifold::WalkStats mnee_seeds;  // its seeds' exact re-traces (volpath.mnee.seed.*)
   void flush(core::Stats& stats) const;
@@ -77,9 +81,17 @@ class VolpathTracer {
   // `probe` (volpath's own tracer) receives the light point and whether MNEE may apply.
   Rgb next_event_surface(const scene::SurfaceHit& hit, const Vec3& wi_local, const scene::BsdfContext& ctx,
                          int medium, core::Rng& rng, VolpathCounters& counters, NeeProbe* probe = nullptr) const;
-  // NEE at a medium vertex p of medium `medium`, reached along direction d.
+  // The free-flight segment a medium vertex was drawn on (homogeneous media with
+  // `equiangular`): the MIS of NEE and phase sampling there counts equiangular sampling.
+  struct FlightSegment {
+    bool active = false;
+    Vec3 o{0, 0, 0}, d{0, 0, 1};
+    float t_max = 0, t = 0;
+    float pdf = 0;  // free-flight density of t
+  };
+  // NEE at a medium vertex p of medium `medium`, reached along direction d (on `flight`).
   Rgb next_event_medium(const Vec3& p, const Vec3& d, int medium, core::Rng& rng, VolpathCounters& counters,
-                        NeeProbe* probe = nullptr) const;
+                        NeeProbe* probe = nullptr, const FlightSegment* flight = nullptr) const;
   // Transmittance of the shadow ray `r` that starts in `medium` (through index-matched
   // boundaries up to r.tmax); 0 if a surface blocks it. `target`: the light point, or
   // nullptr for a light at infinity.
@@ -128,6 +140,16 @@ class VolpathTracer {
   float mnee_bsdf_weight(const ChainTrack& chain, const scene::SurfaceHit& hit, core::Rng& rng,
                          VolpathCounters& counters) const;
 
+  // Equiangular NEE on the segment ray.o + t ray.d, t in [0, t_max], of a homogeneous
+  // medium: beta-less, MIS-weighted (volpath_equiangular.cpp).
+  Rgb next_event_equiangular(const Ray& ray, float t_max, int medium, core::Rng& rng, VolpathCounters& counters) const;
+  // Equiangular sampling's density for the vertex of `flight` and the light point y (normal
+  // n) of `emitter` chosen with probability pmf, over free flight's density of that vertex
+  // (p_e / p_ff): in solid angle at the vertex for area lights (p_e q(y) r^2 / cos / p_ff),
+  // dimensionless for Dirac lights (p_e / p_ff). 0 if equiangular sampling cannot make it.
+  float equiangular_ratio(const FlightSegment& flight, const scene::Emitter& emitter, float pmf, const Vec3& y,
+                          const Vec3& n) const;
+
   template <bool kMedia>
   Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
 
@@ -137,6 +159,7 @@ class VolpathTracer {
   bool m_has_media;
   int m_camera_medium;
   bool m_mnee;  // settings.mnee, nee, and a refractive surface in a scene with media
+  bool m_equiangular;  // settings.equiangular and nee in a scene with media
   std::vector<int> m_shapes;  // specular shapes of MNEE's shape families (volpath_mnee.h)
 };
 

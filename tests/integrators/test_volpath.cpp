@@ -203,6 +203,40 @@ TEST_CASE("volpath: NEE + MIS and phase/BSDF sampling alone agree on a scene wit
   CHECK(worst_bad > 1.0);
 }
 
+// Equiangular NEE (integrators/volpath/volpath_equiangular.cpp) adds a third technique for
+// the direct light of medium vertices; with its MIS the image must not change: volpath with
+// it against volpath without it (free-flight NEE and phase sampling only), per block, on the
+// media box with a point light added in the fog (Dirac case) besides the area light. The
+// same test rejects equiangular NEE weighted 1 (counted twice with the free-flight NEE).
+TEST_CASE("volpath: equiangular NEE with its MIS leaves the image unchanged", "[stat]") {
+  const auto s = test::media_box(true, kRes, true, true);
+  integrators::VolpathSettings with, without, bad;
+  without.equiangular = false;
+  bad.fault = integrators::VolpathFault::equiangular_without_mis;
+  integrators::RenderResult last, last_off;
+  const BlockMeans on = blocks(
+      [&](uint64_t seed) {
+        last = render_volpath(*s, with, kSpp, seed, kDepth);
+        return last.layers[0].image;
+      },
+      600);
+  const BlockMeans off = blocks(
+      [&](uint64_t seed) {
+        last_off = render_volpath(*s, without, kSpp, seed, kDepth);
+        return last_off.layers[0].image;
+      },
+      700);
+  const BlockMeans twice = blocks([&](uint64_t seed) { return render_volpath(*s, bad, kSpp, seed, kDepth).layers[0].image; }, 800);
+  CHECK(last.stats.get("volpath.equiangular.samples") > 0);
+  CHECK(last.stats.get("volpath.nan_dropped") == 0);
+  CHECK(last_off.stats.get("volpath.equiangular.samples") == 0);
+  const double worst = test::sidak_welch(on, off, 0.01), worst_bad = test::sidak_welch(twice, off, 0.01);
+  std::printf("[volpath equiangular vs free-flight NEE, media box + point light] worst |t|/crit %.2f; without MIS %.2f\n",
+              worst, worst_bad);
+  CHECK(worst < 1.0);
+  CHECK(worst_bad > 1.0);
+}
+
 TEST_CASE("volpath: path delegates to volpath on a scene with media", "[unit]") {
   const auto s = test::media_box(false, 16);
   auto p = render(*s, "path", true, 2, 9, kDepth);

@@ -1,5 +1,5 @@
 // Participating media in the scene layer (issue 15): the Henyey-Greenstein phase function
-// (normalisation, chi-square of sample() against pdf()), free-flight distance sampling
+// (normalisation, chi-square of sample() against pdf()), free-flight and equiangular distance sampling
 // (chi-square of the sampled distances against the analytic mixture density; the
 // weights' expectations against Beer-Lambert closed forms) and the medium bookkeeping
 // at boundaries. Each statistical check is also run on a deliberately wrong variant
@@ -15,6 +15,7 @@
 
 #include "core/rng.h"
 #include "scene/bsdf/bsdfs.h"
+#include "scene/media/equiangular.h"
 #include "scene/media/free_flight.h"
 #include "scene/media/medium_interface.h"
 #include "scene/media/phase_function.h"
@@ -188,6 +189,72 @@ TEST_CASE("free flight: sampled distances follow the channel-mixture density", "
   auto one_channel = [&](double a, double b) { return std::exp(-double(st[0]) * a) - std::exp(-double(st[0]) * b); };
   const double bad = free_flight_chi2(m, t_max, 200000, 12, one_channel, std::exp(-double(st[0]) * double(t_max)));
   CHECK(bad < 1e-6);
+}
+
+// Equiangular sampling (scene/media/equiangular.h): chi-square of the sampled distances in 40
+// equal cells against the cells' integrals of pdf() (Simpson, 64 sub-intervals each), on
+// segments with the light point beside, behind and ahead of them, finite and unbounded
+// (cells over [0, 40 h] there, plus one cell beyond); pdf() integrates to 1. A sampler
+// drawn uniformly in t (free flight's stand-in in a thin medium) is rejected by the same
+// test.
+TEST_CASE("equiangular: sampled distances follow pdf()", "[stat]") {
+  struct Case {
+    Vec3 y;
+    float t_max;
+  };
+  const Vec3 o(0.1f, -0.2f, 0.3f), d = Vec3(0.3f, 0.4f, -0.2f).normalized();
+  const Case cases[] = {{o + 0.8f * d + Vec3(0.05f, 0.0f, 0.1f), 2.0f},
+                        {o - 0.5f * d + Vec3(0.0f, 0.3f, 0.0f), 1.5f},
+                        {o + 3.0f * d + Vec3(0.0f, 0.0f, 0.2f), 1.0f},
+                        {o + 0.4f * d + Vec3(0.02f, 0.01f, 0.0f), kInfinity}};
+  constexpr int kBins = 40, kSamples = 200000;
+  int k = 0;
+  for (const Case& c : cases) {
+    const Equiangular e = equiangular_setup(o, d, c.t_max, c.y);
+    REQUIRE(e.ok);
+    const double span = std::isfinite(c.t_max) ? double(c.t_max) : 40.0 * e.h + std::max(0.0, e.delta);
+    auto cell_of = [&](const std::function<double(double)>& pdf, int b) {
+      const double a = span * b / kBins, w = span / kBins / 64;
+      double sum = 0;
+      for (int i = 0; i < 64; ++i)
+        sum += w / 6 * (pdf(a + i * w) + 4 * pdf(a + (i + 0.5) * w) + pdf(a + (i + 1) * w));
+      return sum;
+    };
+    auto run = [&](const std::function<float(float)>& sampler, uint64_t seed) {
+      std::vector<double> observed(kBins + 1, 0.0), expected(kBins + 1, 0.0);
+      core::Rng rng(seed, 0);
+      for (int i = 0; i < kSamples; ++i) {
+        const double t = double(sampler(rng.uniform()));
+        observed[size_t(t >= span ? kBins : std::min(kBins - 1, int(t / span * kBins)))] += 1;
+      }
+      double inside = 0;
+      for (int b = 0; b < kBins; ++b) {
+        expected[size_t(b)] = cell_of([&](double t) { return double(equiangular_pdf(e, c.t_max, float(t))); }, b);
+        inside += expected[size_t(b)];
+      }
+      expected[kBins] = 1.0 - inside;
+      double chi2 = 0;
+      int cells = 0;
+      for (int b = 0; b <= kBins; ++b) {
+        const double ex = expected[size_t(b)] * kSamples;
+        if (b == kBins && ex < 5) continue;  // a finite segment: nothing beyond t_max
+        REQUIRE(ex > 5);
+        chi2 += (observed[size_t(b)] - ex) * (observed[size_t(b)] - ex) / ex;
+        ++cells;
+      }
+      return std::make_pair(boost::math::cdf(boost::math::complement(boost::math::chi_squared(cells - 1), chi2)), inside);
+    };
+    const auto [p_value, inside] = run([&](float u) { return equiangular_sample(e, c.t_max, u); }, 31 + uint64_t(k));
+    INFO("case " << k << " p-value " << p_value << " integral over the cells " << inside);
+    CHECK(p_value > 0.01 / 4);  // Sidak over the four cases, to first order
+    if (std::isfinite(c.t_max)) CHECK(inside == Approx(1.0).epsilon(1e-6));
+    const auto [bad, bad_inside] =
+        run([&](float u) { return std::isfinite(c.t_max) ? u * c.t_max : float(-std::log1p(-double(u)) * span / 4); },
+            41 + uint64_t(k));
+    (void)bad_inside;
+    CHECK(bad < 1e-6);
+    ++k;
+  }
 }
 
 namespace {

@@ -167,7 +167,7 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
   return finish(std::move(s), Vec3(0.0f, 0.0f, 2.5f), Vec3(0, 0, 0), 55.0f, resolution);
 }
 
-std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_ball) {
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_ball, bool point_light) {
   int white = -1;
   auto s = lit_box_shell(white);
   auto smoke = std::make_unique<scene::Sphere>(Vec3(-0.45f, -0.6f, -0.2f), 0.4f);
@@ -183,6 +183,7 @@ std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass_bal
   }
   s->add_shape(std::move(glass));
   if (fog) s->set_camera_medium(s->add_medium(make_medium(Rgb::Constant(0.05f), Rgb::Constant(0.15f), -0.3f)));
+  if (point_light) s->add_emitter(std::make_unique<scene::PointEmitter>(Vec3(0.0f, -0.1f, -0.3f), Rgb(0.3f, 0.25f, 0.2f)));
   return finish(std::move(s), Vec3(0, 0, 0.95f), Vec3(0, 0, -1), 80.0f, resolution);
 }
 

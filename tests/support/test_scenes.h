@@ -53,7 +53,9 @@ std::unique_ptr<scene::Scene> medium_furnace(const scene::HomogeneousMedium& med
 // camera's medium is a thin fog (sigma_s 0.15, sigma_a 0.05, g = -0.3) filling the
 // closed box, around and between the balls. `glass` false: sphere b is diffuse and
 // holds no medium (no caustics; the smoke ball is the only medium besides the fog).
-std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass = true);
+// `point_light`: also a point light in the fog between the balls (equiangular NEE's
+// Dirac case).
+std::unique_ptr<scene::Scene> media_box(bool fog, int resolution, bool glass = true, bool point_light = false);
 
 // media_box (fog, glass ball) with grid media (scene/media/grid_tracking.h): the smoke
 // ball's medium a grid over the ball's box whose density ramps 0 .. 2 along x (sigma_t 2
