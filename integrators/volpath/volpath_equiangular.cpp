@@ -15,18 +15,30 @@
 // The equiangular estimate is beta Tr(t) sigma_s rho_p(d, w) Tr(x -> y) Le |cos_y| / r^2
 // / (p_e(t) q(y)) w_3 (Gruson et al. 2018, Eqs. 2-4: the medium vertex's sigma_s rho_p
 // and a geometry term without a cosine at x).
-// Only homogeneous media: delta tracking in a grid has no closed-form p_ff, so grid
-// segments keep the two free-flight techniques alone. Lights at infinity are never drawn
-// by it (p3 = 0: their MIS is unchanged).
+// Grid media (scene/media/grid_tracking.h): delta tracking's p_ff(t) = sigma_t(x) Tr(t) has no
+// closed form, but the weights only need to be a partition of unity over the techniques
+// for each path (Veach 1997, Sec. 9.2), so all three use the same deterministic stand-in
+// sigma_t(x) exp(-tau_hat(o, x)) (pathspace/bidir_media.h, as bdpt's grid MIS). The
+// contributions stay unbiased: delta tracking's albedo weight for the free-flight ones,
+// Tr(t) by ratio tracking and sigma_s(x) = density(x) sigma_s for the equiangular one.
+// Lights at infinity are never drawn by it (p3 = 0: their MIS is unchanged).
 #include <cmath>
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
 #include "integrators/volpath/volpath_tracer.h"
+#include "pathspace/bidir_media.h"
 #include "scene/media/equiangular.h"
 #include "scene/media/free_flight.h"
+#include "scene/media/grid_tracking.h"
 #include "scene/media/phase_function.h"
 
 namespace dp::integrators {
+
+float VolpathTracer::flight_pdf(int medium, const Vec3& o, const Vec3& d, float t) const {
+  const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
+  if (!med.heterogeneous()) return scene::free_flight_pdf(med, t);
+  return pathspace::end_factor(m_scene, medium, t, pathspace::Span::between(o, o + t * d), true);
+}
 
 float VolpathTracer::equiangular_ratio(const FlightSegment& f, const scene::Emitter& emitter, float pmf,
                                        const Vec3& y, const Vec3& n) const {
@@ -66,7 +78,7 @@ Rgb VolpathTracer::next_event_equiangular(const Ray& ray, float t_max, int mediu
   const float pe = scene::equiangular_pdf(eq, t_max, t);
   if (!(pe > 0.0f)) return Rgb::Zero();
   const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
-  const FlightSegment f{true, ray.o, ray.d, t_max, t, scene::free_flight_pdf(med, t)};
+  const FlightSegment f{true, ray.o, ray.d, t_max, t, flight_pdf(medium, ray.o, ray.d, t)};
   const Vec3 x = ray.at(t);
   const scene::HenyeyGreenstein phase(med.phase);
   Rgb value;  // Le G / (light density), without the phase function
@@ -112,7 +124,9 @@ Rgb VolpathTracer::next_event_equiangular(const Ray& ray, float t_max, int mediu
     ++c.equiangular_occluded;
     return Rgb::Zero();
   }
-  return scene::transmittance(med, t) * med.sigma_s * tr * value * (rho * w / pe);
+  if (!med.heterogeneous()) return scene::transmittance(med, t) * med.sigma_s * tr * value * (rho * w / pe);
+  const Rgb tr_t = scene::transmittance_grid(med, ray.o, ray.d, t, rng);  // ratio tracking
+  return tr_t * (med.density->lookup(x) * med.sigma_s) * tr * value * (rho * w / pe);
 }
 
 }  // namespace dp::integrators

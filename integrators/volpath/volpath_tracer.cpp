@@ -216,7 +216,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
       if (medium >= 0) {
         const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
         const float t_max = found ? hit.t : kInfinity;
-        const bool equiangular = m_equiangular && !med.heterogeneous() && depth < m_max_depth;
+        const bool equiangular = m_equiangular && depth < m_max_depth;
         if (equiangular) L += beta * next_event_equiangular(ray, t_max, medium, rng, c);
         scene::FreeFlightSample ff;
         if (med.heterogeneous()) {  // delta tracking (grid_tracking.h)
@@ -235,7 +235,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           if (depth == m_max_depth || is_black(beta)) break;
           const Vec3 p = ray.at(ff.t);
           flight = FlightSegment{};
-          if (equiangular) flight = FlightSegment{true, ray.o, ray.d, t_max, ff.t, scene::free_flight_pdf(med, ff.t)};
+          if (equiangular) flight = FlightSegment{true, ray.o, ray.d, t_max, ff.t, flight_pdf(medium, ray.o, ray.d, ff.t)};
           const FlightSegment* fs = flight.active ? &flight : nullptr;
           if (m_mnee) {  // NEE, then MNEE with its light sample (volpath_mnee.h)
             NeeProbe probe;

@@ -81,8 +81,8 @@ class VolpathTracer {
   // `probe` (volpath's own tracer) receives the light point and whether MNEE may apply.
   Rgb next_event_surface(const scene::SurfaceHit& hit, const Vec3& wi_local, const scene::BsdfContext& ctx,
                          int medium, core::Rng& rng, VolpathCounters& counters, NeeProbe* probe = nullptr) const;
-  // The free-flight segment a medium vertex was drawn on (homogeneous media with
-  // `equiangular`): the MIS of NEE and phase sampling there counts equiangular sampling.
+  // The free-flight segment a medium vertex was drawn on (with `equiangular`): the MIS of
+  // NEE and phase sampling there counts equiangular sampling.
   struct FlightSegment {
     bool active = false;
     Vec3 o{0, 0, 0}, d{0, 0, 1};
@@ -140,8 +140,8 @@ class VolpathTracer {
   float mnee_bsdf_weight(const ChainTrack& chain, const scene::SurfaceHit& hit, core::Rng& rng,
                          VolpathCounters& counters) const;
 
-  // Equiangular NEE on the segment ray.o + t ray.d, t in [0, t_max], of a homogeneous
-  // medium: beta-less, MIS-weighted (volpath_equiangular.cpp).
+  // Equiangular NEE on the segment ray.o + t ray.d, t in [0, t_max], of a medium:
+  // beta-less, MIS-weighted (volpath_equiangular.cpp).
   Rgb next_event_equiangular(const Ray& ray, float t_max, int medium, core::Rng& rng, VolpathCounters& counters) const;
   // Equiangular sampling's density for the vertex of `flight` and the light point y (normal
   // n) of `emitter` chosen with probability pmf, over free flight's density of that vertex
@@ -149,6 +149,9 @@ class VolpathTracer {
   // dimensionless for Dirac lights (p_e / p_ff). 0 if equiangular sampling cannot make it.
   float equiangular_ratio(const FlightSegment& flight, const scene::Emitter& emitter, float pmf, const Vec3& y,
                           const Vec3& n) const;
+  // Free flight's density of a scatter at t on the segment o + t d of `medium` (grid media:
+  // the deterministic stand-in of volpath_equiangular.cpp).
+  float flight_pdf(int medium, const Vec3& o, const Vec3& d, float t) const;
 
   template <bool kMedia>
   Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
