@@ -205,65 +205,60 @@ TEST_CASE("volpath: NEE + MIS and phase/BSDF sampling alone agree on a scene wit
 
 // Equiangular NEE (integrators/volpath/volpath_equiangular.cpp) adds a third technique for
 // the direct light of medium vertices; with its MIS the image must not change: volpath with
-// it against volpath without it (free-flight NEE and phase sampling only), per block, on the
-// media box with a point light added in the fog (Dirac case) besides the area light. The
-// same test rejects equiangular NEE weighted 1 (counted twice with the free-flight NEE).
+// it against volpath without it (free-flight NEE and phase sampling only), per block. The
+// same test must reject equiangular NEE weighted 1 (counted twice with the free-flight
+// NEE). Runs from seed0, seed0 + 100 and seed0 + 200; returns the last run with it.
+namespace {
+struct EquiangularCheck {
+  double worst = 0, worst_bad = 0;
+  integrators::RenderResult last, last_off;
+};
+EquiangularCheck equiangular_check(const scene::Scene& s, uint64_t seed0) {
+  integrators::VolpathSettings with, without, bad;
+  without.equiangular = false;
+  bad.fault = integrators::VolpathFault::equiangular_without_mis;
+  EquiangularCheck r;
+  auto run = [&](const integrators::VolpathSettings& vs, integrators::RenderResult* keep) {
+    return [&s, vs, keep](uint64_t seed) {
+      integrators::RenderResult res = render_volpath(s, vs, kSpp, seed, kDepth);
+      core::Image img = res.layers[0].image;
+      if (keep) *keep = std::move(res);
+      return img;
+    };
+  };
+  const BlockMeans on = blocks(run(with, &r.last), seed0), off = blocks(run(without, &r.last_off), seed0 + 100),
+                   twice = blocks(run(bad, nullptr), seed0 + 200);
+  r.worst = test::sidak_welch(on, off, 0.01);
+  r.worst_bad = test::sidak_welch(twice, off, 0.01);
+  CHECK(r.last.stats.get("volpath.equiangular.samples") > 0);
+  CHECK(r.last.stats.get("volpath.nan_dropped") == 0);
+  CHECK(r.last_off.stats.get("volpath.equiangular.samples") == 0);
+  return r;
+}
+}  // namespace
+
+// The media box with a point light added in the fog (Dirac case) besides the area light.
 TEST_CASE("volpath: equiangular NEE with its MIS leaves the image unchanged", "[stat]") {
   const auto s = test::media_box(true, kRes, true, true);
-  integrators::VolpathSettings with, without, bad;
-  without.equiangular = false;
-  bad.fault = integrators::VolpathFault::equiangular_without_mis;
-  integrators::RenderResult last, last_off;
-  const BlockMeans on = blocks(
-      [&](uint64_t seed) {
-        last = render_volpath(*s, with, kSpp, seed, kDepth);
-        return last.layers[0].image;
-      },
-      600);
-  const BlockMeans off = blocks(
-      [&](uint64_t seed) {
-        last_off = render_volpath(*s, without, kSpp, seed, kDepth);
-        return last_off.layers[0].image;
-      },
-      700);
-  const BlockMeans twice = blocks([&](uint64_t seed) { return render_volpath(*s, bad, kSpp, seed, kDepth).layers[0].image; }, 800);
-  CHECK(last.stats.get("volpath.equiangular.samples") > 0);
-  CHECK(last.stats.get("volpath.nan_dropped") == 0);
-  CHECK(last_off.stats.get("volpath.equiangular.samples") == 0);
-  const double worst = test::sidak_welch(on, off, 0.01), worst_bad = test::sidak_welch(twice, off, 0.01);
+  const EquiangularCheck r = equiangular_check(*s, 600);
   std::printf("[volpath equiangular vs free-flight NEE, media box + point light] worst |t|/crit %.2f; without MIS %.2f\n",
-              worst, worst_bad);
-  CHECK(worst < 1.0);
-  CHECK(worst_bad > 1.0);
+              r.worst, r.worst_bad);
+  CHECK(r.worst < 1.0);
+  CHECK(r.worst_bad > 1.0);
 }
 
-// The same in grid media (test::grid_media_box: a grid fog and a ramp-density grid ball):
-// equiangular NEE with ratio-tracked Tr and the deterministic MIS stand-in for delta
-// tracking's density (volpath_equiangular.cpp) against free-flight NEE alone. Planted
-// defect: equiangular NEE weighted 1 (|t|/crit 1.83); tried locally, its Tr(t) taken as 1
-// instead of ratio tracking's estimate is rejected at 2.81.
+// Grid media (test::grid_media_box: a grid fog and a ramp-density grid ball): equiangular NEE
+// with ratio-tracked Tr and the deterministic MIS stand-in for delta tracking's density
+// (volpath_equiangular.cpp). Tried locally: its Tr(t) taken as 1 instead of ratio tracking's
+// estimate is rejected at 2.81.
 TEST_CASE("volpath: equiangular NEE in grid media leaves the image unchanged", "[stat]") {
   const auto s = test::grid_media_box(kRes);
-  integrators::VolpathSettings with, without, bad;
-  without.equiangular = false;
-  bad.fault = integrators::VolpathFault::equiangular_without_mis;
-  integrators::RenderResult last;
-  const BlockMeans on = blocks(
-      [&](uint64_t seed) {
-        last = render_volpath(*s, with, kSpp, seed, kDepth);
-        return last.layers[0].image;
-      },
-      900);
-  const BlockMeans off = blocks([&](uint64_t seed) { return render_volpath(*s, without, kSpp, seed, kDepth).layers[0].image; }, 1000);
-  const BlockMeans twice = blocks([&](uint64_t seed) { return render_volpath(*s, bad, kSpp, seed, kDepth).layers[0].image; }, 1100);
-  CHECK(last.stats.get("volpath.equiangular.samples") > 0);
-  CHECK(last.stats.get("volpath.grid_flights") > 0);
-  CHECK(last.stats.get("volpath.nan_dropped") == 0);
-  const double worst = test::sidak_welch(on, off, 0.01), worst_bad = test::sidak_welch(twice, off, 0.01);
-  std::printf("[volpath equiangular vs free-flight NEE, grid media box] worst |t|/crit %.2f; without MIS %.2f\n", worst,
-              worst_bad);
-  CHECK(worst < 1.0);
-  CHECK(worst_bad > 1.0);
+  const EquiangularCheck r = equiangular_check(*s, 900);
+  CHECK(r.last.stats.get("volpath.grid_flights") > 0);
+  std::printf("[volpath equiangular vs free-flight NEE, grid media box] worst |t|/crit %.2f; without MIS %.2f\n", r.worst,
+              r.worst_bad);
+  CHECK(r.worst < 1.0);
+  CHECK(r.worst_bad > 1.0);
 }
 
 TEST_CASE("volpath: path delegates to volpath on a scene with media", "[unit]") {
