@@ -34,6 +34,16 @@
 
 namespace dp::integrators {
 
+namespace {
+// R = p3 / p_ff for an area light (header comment): p_e q(y) r^2 / (|cos_y| p_ff); 0 where
+// equiangular sampling cannot make the connection.
+float area_ratio(float pe, float p_ff, float q, float r2, float cos_y) {
+  if (!(q > 0.0f) || !(cos_y > 0.0f)) return 0.0f;
+  const float R = pe / p_ff * q * r2 / cos_y;
+  return std::isfinite(R) ? R : 0.0f;
+}
+}  // namespace
+
 float VolpathTracer::flight_pdf(int medium, const Vec3& o, const Vec3& d, float t) const {
   const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
   if (!med.heterogeneous()) return scene::free_flight_pdf(med, t);
@@ -49,11 +59,7 @@ float VolpathTracer::equiangular_ratio(const FlightSegment& f, const scene::Emit
   if (emitter.is_delta()) return pe / f.pdf;
   const Vec3 w = y - (f.o + f.t * f.d);
   const float r2 = w.squaredNorm();
-  const float cos_y = std::abs(n.dot(w)) / std::sqrt(r2);
-  const float q = pmf * emitter.pdf_area_direct(f.o, y, n);
-  if (!(q > 0.0f) || !(cos_y > 0.0f)) return 0.0f;
-  const float R = pe / f.pdf * q * r2 / cos_y;
-  return std::isfinite(R) ? R : 0.0f;
+  return area_ratio(pe, f.pdf, pmf * emitter.pdf_area_direct(f.o, y, n), r2, std::abs(n.dot(w)) / std::sqrt(r2));
 }
 
 Rgb VolpathTracer::next_event_equiangular(const Ray& ray, float t_max, int medium, core::Rng& rng,
@@ -83,13 +89,14 @@ Rgb VolpathTracer::next_event_equiangular(const Ray& ray, float t_max, int mediu
   const scene::HenyeyGreenstein phase(med.phase);
   Rgb value;  // Le G / (light density), without the phase function
   Vec3 wi;
-  float dist, w;
+  float dist, w, rho;  // rho: the phase function's value, = its pdf (HG)
   if (delta) {
     const scene::DirectSample ds = emitter->sample_direct(x, u);
     if (!(ds.pdf > 0.0f) || is_black(ds.radiance)) return Rgb::Zero();
     wi = ds.wi;
     dist = ds.dist;
     value = ds.radiance / pmf;
+    rho = phase.eval(ray.d, wi);
     w = f.pdf > 0.0f ? power_heuristic(pe / f.pdf, 1.0f, 0.0f) : 1.0f;
   } else {
     const Vec3 d = dy.p - x;
@@ -105,11 +112,12 @@ Rgb VolpathTracer::next_event_equiangular(const Ray& ray, float t_max, int mediu
     const float q = pmf * emitter->pdf_area_direct(ray.o, dy.p, dy.n);
     if (is_black(Le) || !(q > 0.0f)) return Rgb::Zero();
     value = Le * (cos_y / (r2 * q));
-    const float L = pmf * emitter->pdf_direct(x, dy.p, dy.n, wi), P = phase.pdf(ray.d, wi);
-    w = f.pdf > 0.0f ? power_heuristic(equiangular_ratio(f, *emitter, pmf, dy.p, dy.n), L, P) : 1.0f;
+    rho = phase.eval(ray.d, wi);
+    // p_e and q are this sample's own: equiangular_ratio's terms without recomputing them.
+    const float L = pmf * emitter->pdf_direct(x, dy.p, dy.n, wi);
+    w = f.pdf > 0.0f ? power_heuristic(area_ratio(pe, f.pdf, q, r2, cos_y), L, rho) : 1.0f;
   }
   if (m_settings.fault == VolpathFault::equiangular_without_mis) w = 1.0f;
-  const float rho = phase.eval(ray.d, wi);
   if (!(rho > 0.0f) || !(w > 0.0f)) return Rgb::Zero();
   ++c.shadow_rays;
   Ray r;
