@@ -6,6 +6,7 @@
 
 #include "integrators/path/path_tracer.h"  // power_heuristic
 #include "gradients/shift_helpers.h"  // d3
+#include "integrators/volpath/volpath_mnee_chain.h"
 #include "integrators/volpath/volpath_tracer.h"
 #include "manifold/constraints.h"
 #include "manifold/local_geometry.h"
@@ -21,31 +22,6 @@ using gradients::d3;
 using scene::SurfaceHit;
 
 namespace {
-
-bool reflects(const SurfaceHit& h) {
-  return h.bsdf && h.bsdf->is_purely_delta() && (h.bsdf->lobes() & scene::kDeltaReflection) != 0;
-}
-
-// The Dirac lobe `lobe` at h for light arriving from -w_in (radiance mode, as volpath
-// samples it); nullopt if the surface cannot scatter this way (TIR).
-std::optional<scene::BsdfSample> dirac(const SurfaceHit& h, const Vec3& w_in, uint32_t lobe) {
-  const Vec3 wi = h.shading.to_local(-w_in);
-  if (!pathspace::consistent_side(h, -w_in, wi.z())) return std::nullopt;
-  auto bs = pathspace::sample_dirac_lobe(*h.bsdf, pathspace::radiance_context(h), wi, lobe, 0.5f);
-  if (!bs || !(bs->pdf > 0.0f) || is_black(bs->weight)) return std::nullopt;
-  return bs;
-}
-
-// A ray leaving the anchor along w.
-Ray leave(const scene::Scene& scene, const MneeAnchor& x, const Vec3& w) {
-  if (x.surface) return scene.continue_ray(x.hit, w);
-  Ray r;
-  r.o = x.p;
-  r.d = w;
-  r.tmin = 0.0f;
-  r.tmax = kInfinity;
-  return r;
-}
 
 // Vertices closer than this are the same solution (and a BSDF path MNEE's).
 float match_tolerance(const scene::Scene& scene) { return 1e-3f * std::max(1.0f, scene.scene_radius()); }
@@ -84,6 +60,14 @@ void VolpathTracer::for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, c
   }
 }
 
+template <typename F>
+void VolpathTracer::across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
+                           const F& f, VolpathCounters& c) const {
+  MneeSeeds seeds;
+  mnee_scan(x, y, n_y, m, 0u, shape, b, seeds, c);
+  for (int i = 0; i < seeds.count; ++i) f(seeds.d[size_t(i)]);
+}
+
 MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int max_chain,
                                           bool refraction_hint, core::Rng& rng, VolpathCounters& c) const {
   MneeSolutions out;
@@ -103,7 +87,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   if (straight) {
     ++c.mnee_attempts;
     SurfaceHit h;
-    Ray r = x.surface ? m_scene.spawn_segment(x.hit, y) : leave(m_scene, x, d);
+    Ray r = x.surface ? m_scene.spawn_segment(x.hit, y) : mnee_leave(m_scene, x, d);
     if (!x.surface) r.tmax = std::max(0.0f, dist - 2.0f * scene::Scene::epsilon_at(y));
     for (int k = 0; straight && m_scene.intersect(r, h); ++k) {
       if (!scene::is_index_matched(h)) {
@@ -133,8 +117,12 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
     }
     if ((bsdf.lobes() & scene::kDeltaTransmission) != 0 && max_chain >= 2 && !(straight && first == shape && m == 2)) {
       auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, out, rng, c)); };
-      through((centre - xp).normalized());
-      for_seeds(xp, y, b, through);
+      if (m_settings.mnee_scan > 0) {
+        across(x, y, n_y, 2, shape, b, through, c);
+      } else {
+        through((centre - xp).normalized());
+        for_seeds(xp, y, b, through);
+      }
     }
   }
   if (!straight) return out;
@@ -142,9 +130,14 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   // The straight family: the straight direction, then directions across the first
   // refractive shape.
   ++c.mnee_chains;
-  add(mnee_solve(x, y, n_y, m, 0u, -1, d, out, rng, c));
-  for_seeds(xp, y, m_scene.shapes()[size_t(first)]->bounds(),
-            [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); });
+  auto straight_family = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); };
+  const Bounds3 first_bounds = m_scene.shapes()[size_t(first)]->bounds();
+  if (m_settings.mnee_scan > 0) {
+    across(x, y, n_y, m, -1, first_bounds, straight_family, c);
+  } else {
+    straight_family(d);
+    for_seeds(xp, y, first_bounds, straight_family);
+  }
   return out;
 }
 
@@ -167,28 +160,20 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
     v0.has_surface = true;
   }
   seed.v.push_back(v0);
-  {
-    Ray r = leave(m_scene, x, d);
-    Vec3 w = d;
-    for (int i = 0; i < m; ++i) {
-      const bool ok = m_scene.intersect(r, h) && (shape < 0 || h.shape == shape) &&
-                      (reflection(i) ? reflects(h) : mnee_refracts(h));
-      if (!ok) {
-        ++c.mnee_seed_failed;
-        return out;
-      }
-      const auto bs = dirac(h, w, lobe(i));
-      const float eta = !bs || reflection(i) ? 1.0f : h.ng.dot(-w) > 0.0f ? bs->eta : 1.0f / bs->eta;
-      const auto type = reflection(i) ? manifold::Interaction::reflection : manifold::Interaction::refraction;
-      const auto v = bs ? manifold::make_vertex(m_scene, h, type, double(eta)) : std::nullopt;
-      if (!v || (!reflection(i) && eta == 1.0f)) {
-        ++c.mnee_seed_failed;
-        return out;
-      }
-      seed.v.push_back(*v);
-      w = h.shading.to_world(bs->wo);
-      r = m_scene.continue_ray(h, w);
-    }
+  Ray r;
+  const bool traced = follow_dirac_chain(m_scene, x, d, m, mask, shape, r,
+                                         [&](const SurfaceHit& hit, const Vec3& w, const scene::BsdfSample& bs) {
+    const bool reflect = reflection(int(seed.v.size()) - 1);  // v_0 is x
+    const float eta = reflect ? 1.0f : hit.ng.dot(-w) > 0.0f ? bs.eta : 1.0f / bs.eta;
+    const auto type = reflect ? manifold::Interaction::reflection : manifold::Interaction::refraction;
+    const auto v = manifold::make_vertex(m_scene, hit, type, double(eta));
+    if (!v || (!reflect && eta == 1.0f)) return false;
+    seed.v.push_back(*v);
+    return true;
+  });
+  if (!traced) {
+    ++c.mnee_seed_failed;
+    return out;
   }
   seed.v.push_back(manifold::make_plane_end(d3(y), d3(n_y).normalized()));
   manifold::Chain exact;
@@ -243,7 +228,7 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
     p = double(phase.pdf(x.d_in, w0));
   }
   if (is_black(f) || !(p > 0.0)) return out;
-  Ray r = leave(m_scene, x, w0);
+  r = mnee_leave(m_scene, x, w0);
   Rgb tr_all = Rgb::Ones(), tr;
   for (int i = 0; i <= m; ++i) {
     const Vec3 target = i < m ? out.verts[size_t(i)] : y;
@@ -257,7 +242,7 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
     if (i == m) break;
     const Vec3 next = i + 1 < m ? out.verts[size_t(i + 1)] : y;
     const Vec3 wo = (next - h.p).normalized();
-    const auto bs = dirac(h, r.d, lobe(i));
+    const auto bs = mnee_dirac(h, r.d, lobe(i));
     if (!bs || (bs->wo - h.shading.to_local(wo)).norm() > 1e-3f) {
       ++c.mnee_occluded;
       return out;

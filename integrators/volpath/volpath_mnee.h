@@ -13,12 +13,16 @@
 // x, s_1 .. s_m, y. The seed refracts the ray x -> y at the first m boundaries it meets
 // and ends on the plane through y tangent to the light; manifold::walk (Jakob & Marschner
 // 2012, Sec. 5) then moves its end onto y, keeping x pinned and every s_i a refraction.
-// Seeds: the straight direction and mnee_seeds - 1 directions across the first refracting
-// shape, in the plane of x, y and the shape's centre (a ball lens has up to three
-// solutions inside its caustic). With mnee_shapes, each purely specular shape S (at most
-// four) adds two families of its own: one reflection off S (seeded where S's bounding
-// sphere's normal bisects the directions to x and y), and two refractions through S where
-// the straight segment misses it (light that a ball bends out of its shadow).
+// Seeds (volpath_mnee_scan.cpp): a scan of mnee_scan directions across the first
+// refracting shape, in the plane of x, y and the shape's centre (a ball lens has up to
+// three solutions inside its caustic, all in that plane), each carried through the chain to
+// the light's plane; every sign change of its miss there seeds a walk, and so does a
+// near-zero minimum (two solutions closer than the scan, at a caustic fold). With
+// mnee_scan 0: the straight direction and mnee_seeds - 1 fixed directions across the
+// shape. With mnee_shapes, each purely specular shape S (at most four) adds two families
+// of its own: one reflection off S (seeded where S's bounding sphere's normal bisects the
+// directions to x and y), and two refractions through S where the straight segment misses
+// it (light that a ball bends out of its shadow; seeded as the straight family).
 // The distinct solutions found form a set S(x, y), a deterministic function of x and y
 // (possibly empty), so MNEE is a sampling technique over the paths it can return, each of
 // density p_L(y); the NEE side adds every one.
@@ -114,6 +118,14 @@ inline void set_probe(NeeProbe& probe, const scene::DirectSample& ds) {
 
 // The most seeds (hence solutions) per connection (VolpathSettings::mnee_seeds).
 constexpr int kMaxMneeSeeds = 9;
+// The most directions one scan of seeds traces (VolpathSettings::mnee_scan), and the most
+// seeds it returns (volpath_mnee_scan.cpp).
+constexpr int kMaxMneeScan = 64;
+constexpr int kMaxMneeScanSeeds = 16;
+struct MneeSeeds {
+  int count = 0;
+  std::array<Vec3, kMaxMneeScanSeeds> d{};
+};
 // The most specular shapes MNEE tries a reflection off (more: no reflection chains).
 constexpr int kMaxMneeShapes = 4;
 // The most distinct solutions one connection keeps (further ones are dropped).

@@ -26,13 +26,19 @@ VolpathSettings VolpathSettings::read(Settings& s) {
                              "one reflection off it, and two refractions through it where the straight segment to "
                              "the light misses it");
   v.mnee_seeds = s.get_int("mnee_seeds", v.mnee_seeds,
-                            "seed directions per MNEE connection: the straight line, then pairs across the first "
-                            "refracting shape; every distinct solution found is added");
+                            "with mnee_scan=0: seed directions per MNEE connection, the straight line, then pairs "
+                            "across the first refracting shape; every distinct solution found is added");
+  v.mnee_scan = s.get_int("mnee_scan", v.mnee_scan,
+                           "MNEE seeds from a scan: this many directions across the refracting shape are traced "
+                           "through the chain to the light's plane, and each sign change of the miss (or a "
+                           "near-zero minimum, a caustic fold) seeds a walk (0: the fixed seeds of mnee_seeds)");
   v.mnee_iterations = s.get_int("mnee_iterations", v.mnee_iterations, "Newton steps of an MNEE manifold walk");
   if (v.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (v.mnee_max_chain < 1 || v.mnee_max_chain > 8)
     throw ValueError("setting 'mnee_max_chain' must be in 1 .. 8", "--set");
   if (v.mnee_seeds < 1 || v.mnee_seeds > 9) throw ValueError("setting 'mnee_seeds' must be in 1 .. 9", "--set");
+  if (v.mnee_scan != 0 && (v.mnee_scan < 3 || v.mnee_scan > 64))
+    throw ValueError("setting 'mnee_scan' must be 0 or in 3 .. 64", "--set");
   if (v.mnee_iterations < 1) throw ValueError("setting 'mnee_iterations' must be >= 1", "--set");
   return v;
 }

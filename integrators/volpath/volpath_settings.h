@@ -30,7 +30,8 @@ struct VolpathSettings {
   bool mnee = true;            // manifold NEE through refractive surfaces (volpath_mnee.h; scenes with media)
   int mnee_max_chain = 4;      // most refractions MNEE solves for (1 .. kMaxMneeChain)
   bool mnee_shapes = false;  // MNEE also seeds at each specular shape (<= 4): a reflection off it, two refractions through it
-  int mnee_seeds = 5;          // seed directions per connection (1: the straight line only; <= kMaxMneeSeeds)
+  int mnee_seeds = 5;          // with mnee_scan 0: seed directions per connection (1: the straight line only; <= kMaxMneeSeeds)
+  int mnee_scan = 24;          // seeds from a scan of this many directions (0: mnee_seeds' fixed seeds; volpath_mnee_scan.cpp)
   int mnee_iterations = 20;    // Newton steps of MNEE's manifold walk (Jakob & Marschner 2012)
   VolpathFault fault = VolpathFault::none;  // tests only, never read from settings
 

@@ -38,6 +38,10 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.mnee.fail.walk", mnee_walk_failed);
   stats.add("volpath.mnee.fail.occluded", mnee_occluded);
   stats.add("volpath.mnee.connections", mnee_connections);
+  stats.add("volpath.mnee.scan.rays", mnee_scan_rays);
+  stats.add("volpath.mnee.scan.brackets", mnee_scan_brackets);
+  stats.add("volpath.mnee.scan.folds", mnee_scan_folds);
+  stats.add("volpath.mnee.scan.edges", mnee_scan_edges);
   stats.add("volpath.mnee.bsdf_hits", mnee_bsdf_hits);
   stats.add("volpath.mnee.bsdf_matched", mnee_bsdf_matched);
   if (mnee_walks.attempted > 0) mnee_walks.flush(stats, "volpath.mnee.walk");

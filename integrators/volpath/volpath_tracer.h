@@ -53,6 +53,10 @@ struct VolpathCounters {
   int64_t mnee_walk_failed = 0;  // the manifold walk did not reach y
   int64_t mnee_occluded = 0;     // the solved chain is blocked, or its lobes do not follow it
   int64_t mnee_connections = 0;  // contributions added
+  int64_t mnee_scan_rays = 0;      // seed chains traced by the scans (mnee_scan)
+  int64_t mnee_scan_brackets = 0;  // ... sign changes of the miss: one seed each
+  int64_t mnee_scan_folds = 0;     // ... minima of |miss| whose parabola crosses zero: two seeds
+  int64_t mnee_scan_edges = 0;     // ... ends of a valid run where |miss| still shrinks: one seed
   int64_t mnee_bsdf_hits = 0;    // BSDF/phase paths reaching a light through refractions only
   int64_t mnee_bsdf_matched = 0; // ... that MNEE also returns (weighted by MIS, else 1)
   // Equiangular NEE (volpath_equiangular.cpp).
@@ -135,6 +139,14 @@ class VolpathTracer {
   // Calls f(direction) for MNEE's seed directions across the bounds b (mnee_seeds - 1).
   template <typename F>
   void for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const;
+  // Calls f(direction) for each seed of mnee_scan's.
+  template <typename F>
+  void across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b, const F& f,
+              VolpathCounters& counters) const;
+  // Seeds from a scan of the chain's miss across the bounds b (mnee_scan directions;
+  // volpath_mnee_scan.cpp): their count.
+  int mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,
+                const Bounds3& b, MneeSeeds& seeds, VolpathCounters& counters) const;
   // MNEE's NEE side: beta-less contribution F(X) / p_L * w_L of the probe's light point.
   Rgb mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& counters) const;
   float mnee_bsdf_weight(const ChainTrack& chain, const scene::SurfaceHit& hit, core::Rng& rng,
