@@ -400,6 +400,17 @@ TEST_CASE("mitsuba: veach-mis agrees with the Tungsten reference", "[slow]") {
 // and there volpath's pixels still scatter by +-20 % at 768 spp: MNEE's D grows without
 // bound at the caustic's folds, so its block means are heavy-tailed and their standard
 // errors too small (bdpt reaches the caustic by light tracing instead).
+// Session 21: MNEE seeds from a scan (volpath_mnee_scan.cpp: every isolated solution, ~35 %
+// less time; this test 155 s instead of 300 s) leave it as it was: 0.9923 x, 4 of 255
+// beyond (max |z| 5.08), image-mean z 3.67. Without the ball (fog, walls and light only)
+// volpath is 1.0001 x bdpt (z 0.1, 16 x 32 spp against 16 x 128 spp), no block beyond: the
+// deficit comes with the ball. Twice the samples (16 x 32 spp, this test's statistics
+// recomputed) give 5 beyond and z 3.75, so it is not noise that more samples remove soon.
+// Why: MIS bounds MNEE's contribution at a fold only where p_B = p_x D exceeds p_L; the
+// 5 x 4 mm light has p_L = 1 / area = 5e4, so with an isotropic phase (p_x = 1 / 4 pi)
+// the bound sets in at D ~ 6e5 (D ~ 1 away from the caustic). The caustic's light,
+// re-scattered, is heavy-tailed for every vertex that sees it; bdpt reaches it by light
+// tracing and passes (below).
 // Kept as [!mayfail]: the mean is within 1 % but not within noise of this reference.
 TEST_CASE("mitsuba: volumetric-caustic agrees with the Tungsten reference (volpath)", "[slow][!mayfail]") {
   require_shared_or_skip();
