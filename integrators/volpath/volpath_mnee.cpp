@@ -103,7 +103,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   // The shape families (mnee_shapes), per specular shape S: one reflection off S, seeded at
   // the point of its bounds' sphere whose normal bisects the directions to x and y; two
   // refractions through S (where the straight family does not already seed S), seeded as
-  // the straight family across S and through its centre.
+  // the straight family (with mnee_scan 0: across S and through its centre).
   for (const int shape : m_shapes) {
     ++c.mnee_shape_attempts;
     const Bounds3 b = m_scene.shapes()[size_t(shape)]->bounds();
@@ -127,8 +127,8 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   }
   if (!straight) return out;
 
-  // The straight family: the straight direction, then directions across the first
-  // refractive shape.
+  // The straight family: seeds from the scan across the first refractive shape (with
+  // mnee_scan 0: the straight direction, then fixed directions across it).
   ++c.mnee_chains;
   auto straight_family = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); };
   const Bounds3 first_bounds = m_scene.shapes()[size_t(first)]->bounds();
