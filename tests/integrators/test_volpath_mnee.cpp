@@ -233,53 +233,66 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
 }
 
 // MNEE's scanned seeds (mnee_scan; integrators/volpath/volpath_mnee_scan.cpp) against every
-// solution of the ball lens: for fog anchors below the ball (inside and around its
-// caustic, where up to three chains through the ball reach one light point), a dense
-// reference scan in double of 20000 directions across the ball, in the plane of the
-// anchor, the centre and y (every solution of a ball lies in it), with each sign change
-// of the miss refined by bisection. A root is "isolated" when its neighbours are at least
-// two steps of the default scan away, and the silhouette one: the scan must bracket each
-// such root and its walk must reach it. Over all roots (fold pairs included), the share of
-// sum D (the light the solutions carry) the scan returns must not be below the fixed
-// seeds' (mnee_scan = 0, the earlier default). With the fixed seeds in the scan's place,
-// two isolated roots are missed (sum D share 0.992); an 8-direction scan misses ΣD 6.5 %.
-TEST_CASE("volpath: MNEE's scanned seeds reach every isolated solution of a ball lens", "[unit]") {
+// solution of the ball lens of the caustic box: for fog anchors below the ball (inside and
+// around its caustic, where up to three chains through the ball reach one light point)
+// and inside it (one refraction out), a dense reference scan in double of 20000 directions
+// in the plane of the anchor, the centre and y (every solution of a ball lies in it),
+// across the ball's silhouette (or the whole circle from inside), with each sign change of
+// the miss refined by bisection. A root is "isolated" when its neighbours are at least two
+// steps of the default scan away (in the scan's own parameter), and from outside the
+// silhouette one: the scan must bracket each such root and its walk must reach it. Over
+// all roots (fold pairs included), the share of sum D (the light the solutions carry) the
+// scan returns must not be below the fixed seeds' (mnee_scan = 0, the earlier default).
+// Below the ball, with the fixed seeds in the scan's place two isolated roots are missed
+// (sum D share 0.992); an 8-direction scan returns 0.935, the scan without its run-end
+// seeds 0.958. Inside, the fixed seeds return 0.987, a scan over half the circle 104 of
+// the 300 solutions.
+namespace {
+
+struct ScanRecall {
+  int anchors = 0, roots = 0, isolated = 0, isolated_found = 0, three = 0, n_scan = 0, n_fixed = 0;
+  double d_all = 0, d_scan = 0, d_fixed = 0;
+};
+
+ScanRecall scan_recall(bool inside, uint64_t seed) {
   const auto s = test::caustic_box(16, true);
   const Vec3d centre(0.0, 0.3, 0.0);
   const double radius = 0.4;
   const int ball = int(s->shapes().size()) - 1;  // caustic_box adds it last
+  const int m = inside ? 1 : 2;
   const integrators::VolpathSettings scan;  // the default scan
   REQUIRE(scan.mnee_scan > 0);
   integrators::VolpathSettings fixed;
   fixed.mnee_scan = 0;
   const integrators::VolpathTracer scanned(*s, scan, 16), seeded(*s, fixed, 16);
-  core::Rng rng(5);
+  core::Rng rng(seed);
   integrators::VolpathCounters c;
-  int roots = 0, isolated = 0, isolated_found = 0, anchors = 0, caustic = 0, n_scan = 0, n_fixed = 0;
-  double d_all = 0, d_scan = 0, d_fixed = 0;
+  ScanRecall out;
   for (int i = 0; i < 300; ++i) {
-    const Vec3 p(rng.uniform() * 0.5f - 0.25f, -0.95f + 0.75f * rng.uniform(), rng.uniform() * 0.5f - 0.25f);
+    // Inside: above the shelf's plane (y 0.3), which cuts the ball outside |x|, |z| < 0.25.
+    const Vec3 p = inside ? Vec3(rng.uniform() * 0.24f - 0.12f, 0.35f + 0.27f * rng.uniform(), rng.uniform() * 0.24f - 0.12f)
+                          : Vec3(rng.uniform() * 0.5f - 0.25f, -0.95f + 0.75f * rng.uniform(), rng.uniform() * 0.5f - 0.25f);
     const Vec3 y(rng.uniform() * 0.6f - 0.3f, 0.98f, rng.uniform() * 0.6f - 0.3f);
     Ray straight;
     straight.o = p;
     straight.d = (y - p).normalized();
     scene::SurfaceHit h;
     if (!s->intersect(straight, h) || h.shape != ball) continue;  // the ball blocks x -> y
-    ++anchors;
-    // The reference: e(theta) = (landing - y) . a over the ball's silhouette.
+    ++out.anchors;
+    // The reference: e(theta) = (landing - y) . a, theta from the direction to the centre.
     const Vec3d o = p.cast<double>(), yd = y.cast<double>();
     const Vec3d to_c = centre - o;
-    const double dc = to_c.norm(), theta_max = std::asin(radius / dc);
+    const double dc = to_c.norm(), theta_max = inside ? kPiD : std::asin(radius / dc);
     const Vec3d normal = to_c.cross(yd - o).normalized(), cdir = to_c / dc, u = normal.cross(cdir).normalized();
     const Vec3d a = Vec3d(0, -1, 0).cross(normal).normalized();
     auto dir = [&](double t) { return Vec3d(std::cos(t) * cdir + std::sin(t) * u); };
     auto miss = [&](double t) -> std::optional<double> {
-      const auto end = trace_to_light(*s, o, dir(t), Vec3d::Zero(), 2, 0u, ball);
+      const auto end = trace_to_light(*s, o, dir(t), Vec3d::Zero(), m, 0u, ball);
       if (!end) return std::nullopt;
       return (*end - yd).dot(a);
     };
     constexpr int kDense = 20000;
-    std::vector<double> found_roots;
+    std::vector<double> roots;
     std::optional<double> prev = miss(-theta_max);
     double t_prev = -theta_max;
     for (int j = 1; j <= kDense; ++j) {
@@ -294,54 +307,74 @@ TEST_CASE("volpath: MNEE's scanned seeds reach every isolated solution of a ball
           if ((*em <= 0) == (e_lo <= 0)) lo = mid, e_lo = *em;
           else hi = mid;
         }
-        found_roots.push_back(0.5 * (lo + hi));
+        roots.push_back(0.5 * (lo + hi));
       }
       prev = e;
       t_prev = t;
     }
-    integrators::MneeAnchor x = integrators::MneeAnchor::in_medium(p, Vec3(0, -1, 0), s->camera_medium(), 1);
+    const integrators::MneeAnchor x = integrators::MneeAnchor::in_medium(p, Vec3(0, -1, 0), s->camera_medium(), 1);
     const integrators::MneeSolutions S = scanned.mnee_connect(x, y, Vec3(0, -1, 0), 8, true, rng, c);
     const integrators::MneeSolutions F = seeded.mnee_connect(x, y, Vec3(0, -1, 0), 8, true, rng, c);
     auto has = [&](const integrators::MneeSolutions& set, const Vec3d& s1) {
       for (int k = 0; k < set.count; ++k)
-        if (set.x[size_t(k)].m == 2 && (set.x[size_t(k)].s1 - s1).norm() < 1e-4) return true;
+        if (set.x[size_t(k)].m == m && (set.x[size_t(k)].s1 - s1).norm() < 1e-4) return true;
       return false;
     };
+    // The scan's parameter (volpath_mnee_scan.cpp): sin theta = (R / d_c) sin t from
+    // outside, theta = 2 t from inside; pi / K per step.
+    auto param = [&](double th) {
+      return inside ? 0.5 * th : std::asin(std::clamp(std::sin(th) * dc / radius, -1.0, 1.0));
+    };
     const double step = kPiD / scan.mnee_scan;
-    caustic += found_roots.size() == 3;
-    for (size_t r = 0; r < found_roots.size(); ++r) {
-      const auto hit = manifold::trace(*s, o, dir(found_roots[r]), Vec3d::Zero());
+    out.three += roots.size() == 3;
+    for (size_t r = 0; r < roots.size(); ++r) {
+      const auto hit = manifold::trace(*s, o, dir(roots[r]), Vec3d::Zero());
       REQUIRE(hit);
-      const double D = fd_density(*s, o, dir(found_roots[r]), Vec3d::Zero(), 2, 0u);
-      ++roots;
+      const double D = fd_density(*s, o, dir(roots[r]), Vec3d::Zero(), m, 0u);
+      ++out.roots;
       const bool in_scan = has(S, hit->p), in_fixed = has(F, hit->p);
-      n_scan += in_scan;
-      n_fixed += in_fixed;
+      out.n_scan += in_scan;
+      out.n_fixed += in_fixed;
       if (D > 0) {
-        d_all += D;
-        d_scan += in_scan ? D : 0.0;
-        d_fixed += in_fixed ? D : 0.0;
+        out.d_all += D;
+        out.d_scan += in_scan ? D : 0.0;
+        out.d_fixed += in_fixed ? D : 0.0;
       }
-      // Gaps in the scan's parameter phi (sin theta = (R / d_c) sin phi, pi / K per step).
-      auto phi = [&](double t) { return std::asin(std::clamp(std::sin(t) * dc / radius, -1.0, 1.0)); };
-      // Isolated: two steps from other roots, one from the silhouette (the scan's outermost
-      // samples lie half a step inside it).
-      const double gap_lo = r > 0 ? 0.5 * (phi(found_roots[r]) - phi(found_roots[r - 1]))
-                                  : phi(found_roots[r]) + 0.5 * kPiD;
-      const double gap_hi = r + 1 < found_roots.size() ? 0.5 * (phi(found_roots[r + 1]) - phi(found_roots[r]))
-                                                       : 0.5 * kPiD - phi(found_roots[r]);
-      if (std::min(gap_lo, gap_hi) < step) continue;
-      ++isolated;
-      isolated_found += in_scan;
-      INFO("anchor " << o.transpose() << " y " << yd.transpose() << " root " << found_roots[r] << " of "
-                     << found_roots.size() << ", theta_max " << theta_max);
+      // Half the distance to the neighbouring roots (around the circle from inside); from
+      // outside the distance to the silhouette (the scan's outermost samples lie half a
+      // step inside it).
+      const double t_r = param(roots[r]);
+      const double wrap = inside ? kPiD : 0.0;
+      const double lo = r > 0 ? 0.5 * (t_r - param(roots[r - 1]))
+                              : inside ? 0.5 * (t_r - param(roots.back()) + wrap) : t_r + 0.5 * kPiD;
+      const double hi = r + 1 < roots.size() ? 0.5 * (param(roots[r + 1]) - t_r)
+                                             : inside ? 0.5 * (param(roots.front()) + wrap - t_r) : 0.5 * kPiD - t_r;
+      if (roots.size() > 1 || !inside)
+        if (std::min(lo, hi) < step) continue;
+      ++out.isolated;
+      out.isolated_found += in_scan;
+      INFO("anchor " << o.transpose() << " y " << yd.transpose() << " root " << roots[r] << " of " << roots.size()
+                     << ", theta_max " << theta_max);
       CHECK(in_scan);
     }
   }
-  std::printf("[volpath MNEE scan vs a dense reference] %d anchors (%d with three solutions), %d solutions (%d "
-              "isolated, %d of them found); returned: scan %d (share of sum D %.4f), fixed seeds %d (%.4f)\n",
-              anchors, caustic, roots, isolated, isolated_found, n_scan, d_scan / d_all, n_fixed, d_fixed / d_all);
-  CHECK(anchors > 100);
-  CHECK(caustic > 10);  // anchors inside the caustic (three solutions)
-  CHECK(d_scan >= d_fixed);
+  std::printf("[volpath MNEE scan vs a dense reference, anchors %s the ball] %d anchors (%d with three solutions), "
+              "%d solutions (%d isolated, %d of them found); returned: scan %d (share of sum D %.4f), fixed seeds %d "
+              "(%.4f)\n",
+              inside ? "inside" : "below", out.anchors, out.three, out.roots, out.isolated, out.isolated_found,
+              out.n_scan, out.d_scan / out.d_all, out.n_fixed, out.d_fixed / out.d_all);
+  CHECK(out.anchors > 100);
+  CHECK(out.isolated > out.roots / 2);
+  CHECK(out.d_scan >= out.d_fixed);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("volpath: MNEE's scanned seeds reach every isolated solution of a ball lens", "[unit]") {
+  SECTION("anchors below the ball, two refractions") {
+    const ScanRecall r = scan_recall(false, 5);
+    CHECK(r.three > 10);  // anchors inside the caustic (three solutions)
+  }
+  SECTION("anchors inside the ball, one refraction") { scan_recall(true, 6); }
 }
