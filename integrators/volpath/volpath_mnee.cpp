@@ -62,9 +62,12 @@ void VolpathTracer::for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, c
 
 template <typename F>
 void VolpathTracer::across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
-                           const F& f, VolpathCounters& c) const {
+                           const Vec3& fallback, const F& f, VolpathCounters& c) const {
   MneeSeeds seeds;
-  mnee_scan(x, y, n_y, m, 0u, shape, b, seeds, c);
+  if (mnee_scan(x, y, n_y, m, 0u, shape, b, seeds, c) == 0) {  // nothing bracketed: one walk from `fallback`
+    ++c.mnee_scan_fallbacks;
+    f(fallback);
+  }
   for (int i = 0; i < seeds.count; ++i) f(seeds.d[size_t(i)]);
 }
 
@@ -118,7 +121,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
     if ((bsdf.lobes() & scene::kDeltaTransmission) != 0 && max_chain >= 2 && !(straight && first == shape && m == 2)) {
       auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, out, rng, c)); };
       if (m_settings.mnee_scan > 0) {
-        across(x, y, n_y, 2, shape, b, through, c);
+        across(x, y, n_y, 2, shape, b, (centre - xp).normalized(), through, c);
       } else {
         through((centre - xp).normalized());
         for_seeds(xp, y, b, through);
@@ -133,7 +136,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   auto straight_family = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); };
   const Bounds3 first_bounds = m_scene.shapes()[size_t(first)]->bounds();
   if (m_settings.mnee_scan > 0) {
-    across(x, y, n_y, m, -1, first_bounds, straight_family, c);
+    across(x, y, n_y, m, -1, first_bounds, d, straight_family, c);
   } else {
     straight_family(d);
     for_seeds(xp, y, first_bounds, straight_family);

@@ -36,13 +36,15 @@ int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y
   const Vec3 xp = x.position();
   const Vec3 to_c = b.center() - xp;
   const float dc = to_c.norm();
-  const float half = 0.5f * (b.hi - b.lo).minCoeff();
-  // From outside the bounds' inscribed sphere of radius R (the ball itself for a sphere):
-  // directions across it, parametrized by the angle t in (-pi/2, pi/2) at which a line
-  // from x would meet it seen from afar (impact parameter R sin t), so sin(theta) =
-  // R sin(t) / d_c for the angle theta from the direction to the centre. Uniform in t,
-  // the samples crowd toward the silhouette, where the entry point (hence the miss) moves
-  // fastest. From inside: theta = 2 t, the whole circle.
+  // R: half the bounds' largest extent (the ball's radius for a sphere; for a flat shape,
+  // a pane or one face of a slab, its width and not its zero thickness).
+  const float half = 0.5f * (b.hi - b.lo).maxCoeff();
+  // From outside the sphere of radius R about the bounds' centre: directions across it,
+  // parametrized by the angle t in (-pi/2, pi/2) at which a line from x would meet it
+  // seen from afar (impact parameter R sin t), so sin(theta) = R sin(t) / d_c for the
+  // angle theta from the direction to the centre. Uniform in t, the samples crowd toward
+  // the silhouette, where the entry point (hence the miss) moves fastest. From inside:
+  // theta = 2 t, the whole circle.
   const bool inside = !(dc > half);
   const Vec3 c_dir = dc > 1e-6f * std::max(1.0f, half) ? Vec3(to_c / dc) : Vec3((y - xp).normalized());
   Vec3 normal = c_dir.cross(y - xp);

@@ -42,6 +42,7 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.mnee.scan.brackets", mnee_scan_brackets);
   stats.add("volpath.mnee.scan.folds", mnee_scan_folds);
   stats.add("volpath.mnee.scan.edges", mnee_scan_edges);
+  stats.add("volpath.mnee.scan.fallbacks", mnee_scan_fallbacks);
   stats.add("volpath.mnee.bsdf_hits", mnee_bsdf_hits);
   stats.add("volpath.mnee.bsdf_matched", mnee_bsdf_matched);
   if (mnee_walks.attempted > 0) mnee_walks.flush(stats, "volpath.mnee.walk");

@@ -57,6 +57,7 @@ struct VolpathCounters {
   int64_t mnee_scan_brackets = 0;  // ... sign changes of the miss: one seed each
   int64_t mnee_scan_folds = 0;     // ... minima of |miss| whose parabola crosses zero: two seeds
   int64_t mnee_scan_edges = 0;     // ... ends of a valid run where |miss| still shrinks: one seed
+  int64_t mnee_scan_fallbacks = 0; // scans without a seed: one walk from the straight (or centre) direction
   int64_t mnee_bsdf_hits = 0;    // BSDF/phase paths reaching a light through refractions only
   int64_t mnee_bsdf_matched = 0; // ... that MNEE also returns (weighted by MIS, else 1)
   // Equiangular NEE (volpath_equiangular.cpp).
@@ -139,10 +140,10 @@ class VolpathTracer {
   // Calls f(direction) for MNEE's seed directions across the bounds b (mnee_seeds - 1).
   template <typename F>
   void for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const;
-  // Calls f(direction) for each seed of mnee_scan's.
+  // Calls f(direction) for each seed of mnee_scan's, or for `fallback` if it has none.
   template <typename F>
-  void across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b, const F& f,
-              VolpathCounters& counters) const;
+  void across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
+              const Vec3& fallback, const F& f, VolpathCounters& counters) const;
   // Seeds from a scan of the chain's miss across the bounds b (mnee_scan directions;
   // volpath_mnee_scan.cpp): their count.
   int mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,

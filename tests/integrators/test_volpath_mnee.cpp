@@ -15,11 +15,13 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <functional>
+#include <string>
 
 #include "integrators/volpath/volpath_integrator.h"
 #include "integrators/volpath/volpath_tracer.h"
 #include "manifold/local_geometry.h"
 #include "manifold/walk.h"
+#include "scene/loaders/loader.h"
 #include "tests/support/block_stats.h"
 #include "tests/support/quiet_options.h"
 #include "tests/support/test_scenes.h"
@@ -377,4 +379,64 @@ TEST_CASE("volpath: MNEE's scanned seeds reach every isolated solution of a ball
     CHECK(r.three > 10);  // anchors inside the caustic (three solutions)
   }
   SECTION("anchors inside the ball, one refraction") { scan_recall(true, 6); }
+}
+
+// A glass slab made of six quads (as Mitsuba `rectangle`s make one): the first refracting
+// shape the straight segment meets is flat, its bounds have no thickness. The scan must
+// still span the face's width: every anchor below the slab with a solution for the fixed
+// seeds has one for the scan, found by the scan's own brackets rather than by its
+// fallback walk from the straight line. (Scanning across the bounds' smallest extent,
+// zero here, collapsed every scan direction onto one: no bracket, and before the
+// fallback no solution at all.)
+TEST_CASE("volpath: MNEE's scan reaches the light through a slab of flat faces", "[unit]") {
+  std::string yaml = R"(version: 1
+camera: {type: perspective, position: [0, 0.5, -3], look_at: [0, 0.5, 0], up: [0, 1, 0], fov: 40, resolution: [8, 8]}
+materials:
+  white: {type: diffuse, albedo: [0.7, 0.7, 0.7]}
+  glass: {type: dielectric, ior: 1.5, ext_ior: 1.0}
+media:
+  fog: {type: homogeneous, sigma_a: [0.01, 0.01, 0.01], sigma_s: [0.1, 0.1, 0.1], phase: {type: isotropic}}
+medium: fog
+shapes:
+  - {type: quad, material: white, vertices: [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]}
+  - {type: quad, emission: [10, 10, 10], vertices: [[-0.2, 2, -0.2], [0.2, 2, -0.2], [0.2, 2, 0.2], [-0.2, 2, 0.2]]}
+)";
+  // The slab x, z in [-0.6, 0.6], y in [1.0, 1.1], outward normals.
+  const float a = 0.6f, y0 = 1.0f, y1 = 1.1f;
+  auto face = [&](std::initializer_list<Vec3> v) {
+    yaml += "  - {type: quad, material: glass, vertices: [";
+    for (const Vec3& p : v) yaml += "[" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + "], ";
+    yaml.resize(yaml.size() - 2);
+    yaml += "]}\n";
+  };
+  face({{-a, y1, -a}, {-a, y1, a}, {a, y1, a}, {a, y1, -a}});
+  face({{-a, y0, -a}, {a, y0, -a}, {a, y0, a}, {-a, y0, a}});
+  face({{-a, y0, -a}, {-a, y1, -a}, {a, y1, -a}, {a, y0, -a}});
+  face({{-a, y0, a}, {a, y0, a}, {a, y1, a}, {-a, y1, a}});
+  face({{-a, y0, -a}, {-a, y0, a}, {-a, y1, a}, {-a, y1, -a}});
+  face({{a, y0, -a}, {a, y1, -a}, {a, y1, a}, {a, y0, a}});
+  const auto s = scene::load_scene_yaml_string(yaml, "slab.yaml");
+  const integrators::VolpathSettings scan;
+  integrators::VolpathSettings fixed;
+  fixed.mnee_scan = 0;
+  const integrators::VolpathTracer scanned(*s, scan, 16), seeded(*s, fixed, 16);
+  core::Rng rng(9);
+  integrators::VolpathCounters c;
+  int with_fixed = 0, with_scan = 0, missed = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p(rng.uniform() - 0.5f, 0.1f + 0.8f * rng.uniform(), rng.uniform() - 0.5f);
+    const Vec3 y(0.4f * rng.uniform() - 0.2f, 2.0f, 0.4f * rng.uniform() - 0.2f);
+    const integrators::MneeAnchor x = integrators::MneeAnchor::in_medium(p, Vec3(0, -1, 0), s->camera_medium(), 1);
+    const int n_scan = scanned.mnee_connect(x, y, Vec3(0, -1, 0), 8, true, rng, c).count;
+    const int n_fixed = seeded.mnee_connect(x, y, Vec3(0, -1, 0), 8, true, rng, c).count;
+    with_fixed += n_fixed > 0;
+    with_scan += n_scan > 0;
+    missed += n_fixed > 0 && n_scan == 0;
+  }
+  std::printf("[volpath MNEE scan through a slab of quads] 200 anchors: solutions for %d with the fixed seeds, %d with "
+              "the scan, %d missed by the scan; scans %lld bracketed, %lld fell back to the straight line\n",
+              with_fixed, with_scan, missed, (long long)c.mnee_scan_brackets, (long long)c.mnee_scan_fallbacks);
+  CHECK(with_fixed > 150);
+  CHECK(missed == 0);
+  CHECK(c.mnee_scan_brackets > 4 * c.mnee_scan_fallbacks);  // the scan itself, not its fallback, found them
 }
