@@ -14,7 +14,10 @@
 //  * a sign change between neighbouring samples brackets one; its seed is the secant root;
 //  * a local minimum of |e| without a sign change may hide a pair closer together than
 //    the sampling (a fold): the parabola through the three samples gives its roots as
-//    seeds when it crosses zero.
+//    seeds when it crosses zero;
+//  * where the chain breaks (the silhouette, an occluder), the last valid sample of a run
+//    whose miss still shrinks toward the break seeds a walk of its own.
+// From inside the shape the samples close a circle (neighbours wrap around).
 // Every seed then goes through the same manifold walk and the same de-duplication as the
 // fixed seeds, so S(x, y) stays a deterministic function of x and y and the MIS with
 // BSDF sampling is unchanged (volpath_mnee.h, "The BSDF side").
@@ -79,18 +82,20 @@ int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y
     if (seeds.count < kMaxMneeScanSeeds) seeds.d[size_t(seeds.count++)] = direction(tt);
   };
   const float step = kPi / float(k);
-  for (int j = 0; j + 1 < k; ++j) {
-    const float e0 = e[size_t(j)], e1 = e[size_t(j + 1)];
+  // Neighbours of sample j (-1: none); from inside the samples close a circle.
+  auto next = [&](int j) { return j + 1 < k ? j + 1 : inside ? 0 : -1; };
+  auto prev = [&](int j) { return j > 0 ? j - 1 : inside ? k - 1 : -1; };
+  auto at = [&](int j) { return j < 0 ? std::numeric_limits<float>::quiet_NaN() : e[size_t(j)]; };
+  for (int j = 0; j < k; ++j) {
+    const float e0 = e[size_t(j)], e1 = at(next(j));
     if (std::isnan(e0) || std::isnan(e1)) continue;
     if ((e0 <= 0.0f) != (e1 <= 0.0f)) {  // a bracketed root: the secant's
       add(t[size_t(j)] + step * e0 / (e0 - e1));
       ++c.mnee_scan_brackets;
       continue;
     }
-    if (j == 0) continue;
-    const float em = e[size_t(j - 1)];
-    if (std::isnan(em)) continue;
-    if ((em <= 0.0f) != (e0 <= 0.0f)) continue;
+    const float em = at(prev(j));
+    if (std::isnan(em) || (em <= 0.0f) != (e0 <= 0.0f)) continue;
     if (!(std::abs(e0) < std::abs(em) && std::abs(e0) < std::abs(e1))) continue;
     // A local minimum of |e| at t_j: the parabola e(s) = e0 + B s + A s^2 (s in steps).
     const float A = 0.5f * (e1 - 2.0f * e0 + em), B = 0.5f * (e1 - em);
@@ -106,10 +111,9 @@ int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y
   for (int j = 0; j < k; ++j) {
     const float e0 = e[size_t(j)];
     if (std::isnan(e0)) continue;
-    const bool left_end = j == 0 || std::isnan(e[size_t(j - 1)]);
-    const bool right_end = j + 1 == k || std::isnan(e[size_t(j + 1)]);
+    const bool left_end = std::isnan(at(prev(j))), right_end = std::isnan(at(next(j)));
     if (left_end == right_end) continue;  // inside a run, or a run of one sample
-    const float inner = e[size_t(left_end ? j + 1 : j - 1)];
+    const float inner = at(left_end ? next(j) : prev(j));
     if ((inner <= 0.0f) == (e0 <= 0.0f) && std::abs(e0) < std::abs(inner)) {
       add(t[size_t(j)]);
       ++c.mnee_scan_edges;

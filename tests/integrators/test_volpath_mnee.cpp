@@ -365,6 +365,8 @@ ScanRecall scan_recall(bool inside, uint64_t seed) {
               "(%.4f)\n",
               inside ? "inside" : "below", out.anchors, out.three, out.roots, out.isolated, out.isolated_found,
               out.n_scan, out.d_scan / out.d_all, out.n_fixed, out.d_fixed / out.d_all);
+  std::printf("  scan: %lld brackets, %lld folds, %lld run ends, %lld fallbacks\n", (long long)c.mnee_scan_brackets,
+              (long long)c.mnee_scan_folds, (long long)c.mnee_scan_edges, (long long)c.mnee_scan_fallbacks);
   CHECK(out.anchors > 100);
   CHECK(out.isolated > out.roots / 2);
   CHECK(out.d_scan >= out.d_fixed);
