@@ -408,7 +408,7 @@ TEST_CASE("mitsuba: veach-mis agrees with the Tungsten reference", "[slow]") {
 // and there volpath's pixels still scatter by +-20 % at 768 spp: MNEE's D grows without
 // bound at the caustic's folds, so its block means are heavy-tailed and their standard
 // errors too small (bdpt reaches the caustic by light tracing instead).
-// Session 21: MNEE seeds from a scan (volpath_mnee_scan.cpp: every isolated solution, ~35 %
+// Session 21: MNEE seeds from a scan (volpath_mnee_scan.cpp: every isolated solution, a third
 // less time; this test 155 s instead of 300 s) leave it as it was: 0.9923 x, 4 of 255
 // beyond (max |z| 5.08), image-mean z 3.67. Without the ball (fog, walls and light only)
 // volpath is 1.0001 x bdpt (z 0.1, 16 x 32 spp against 16 x 128 spp), no block beyond: the
