@@ -61,12 +61,17 @@ void VolpathTracer::for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, c
 }
 
 template <typename F>
-void VolpathTracer::across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
-                           const Vec3& fallback, const F& f, VolpathCounters& c) const {
+void VolpathTracer::seed_family(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape,
+                                const Bounds3& b, const Vec3& first, const F& f, VolpathCounters& c) const {
+  if (m_settings.mnee_scan <= 0) {  // the fixed seeds: `first`, then pairs across b
+    f(first);
+    for_seeds(x.position(), y, b, f);
+    return;
+  }
   MneeSeeds seeds;
-  if (mnee_scan(x, y, n_y, m, 0u, shape, b, seeds, c) == 0) {  // nothing bracketed: one walk from `fallback`
+  if (mnee_scan(x, y, n_y, m, shape, b, seeds, c) == 0) {  // nothing bracketed: one walk from `first`
     ++c.mnee_scan_fallbacks;
-    f(fallback);
+    f(first);
   }
   for (int i = 0; i < seeds.count; ++i) f(seeds.d[size_t(i)]);
 }
@@ -120,12 +125,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
     }
     if ((bsdf.lobes() & scene::kDeltaTransmission) != 0 && max_chain >= 2 && !(straight && first == shape && m == 2)) {
       auto through = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, 2, 0u, shape, seed, out, rng, c)); };
-      if (m_settings.mnee_scan > 0) {
-        across(x, y, n_y, 2, shape, b, (centre - xp).normalized(), through, c);
-      } else {
-        through((centre - xp).normalized());
-        for_seeds(xp, y, b, through);
-      }
+      seed_family(x, y, n_y, 2, shape, b, (centre - xp).normalized(), through, c);
     }
   }
   if (!straight) return out;
@@ -134,13 +134,7 @@ MneeSolutions VolpathTracer::mnee_connect(const MneeAnchor& x, const Vec3& y, co
   // mnee_scan 0: the straight direction, then fixed directions across it).
   ++c.mnee_chains;
   auto straight_family = [&](const Vec3& seed) { add(mnee_solve(x, y, n_y, m, 0u, -1, seed, out, rng, c)); };
-  const Bounds3 first_bounds = m_scene.shapes()[size_t(first)]->bounds();
-  if (m_settings.mnee_scan > 0) {
-    across(x, y, n_y, m, -1, first_bounds, d, straight_family, c);
-  } else {
-    straight_family(d);
-    for_seeds(xp, y, first_bounds, straight_family);
-  }
+  seed_family(x, y, n_y, m, -1, m_scene.shapes()[size_t(first)]->bounds(), d, straight_family, c);
   return out;
 }
 

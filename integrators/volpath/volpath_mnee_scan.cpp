@@ -8,7 +8,7 @@
 //
 // The scan instead follows the seed chain itself across the shape: K directions in the
 // plane of x, y and the shape's centre (every solution of a ball lies in it), each
-// refracted (or reflected) through the chain's m Dirac vertices and carried on to the
+// refracted through the chain's m Dirac vertices and carried on to the
 // light's tangent plane, where e(t) = (landing point - y) . a is its signed miss along the
 // plane's in-light direction a. Solutions are roots of e(t):
 //  * a sign change between neighbouring samples brackets one; its seed is the secant root;
@@ -32,7 +32,7 @@ namespace dp::integrators {
 
 using scene::SurfaceHit;
 
-int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,
+int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape,
                              const Bounds3& b, MneeSeeds& seeds, VolpathCounters& c) const {
   seeds.count = 0;
   const int k = std::clamp(m_settings.mnee_scan, 3, kMaxMneeScan);
@@ -69,7 +69,7 @@ int VolpathTracer::mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y
     t[size_t(j)] = (-1.0f + float(2 * j + 1) / float(k)) * (0.5f * kPi);
     e[size_t(j)] = std::numeric_limits<float>::quiet_NaN();
     Ray r;
-    const bool ok = follow_dirac_chain(m_scene, x, direction(t[size_t(j)]), m, mask, shape, r,
+    const bool ok = follow_dirac_chain(m_scene, x, direction(t[size_t(j)]), m, 0u, shape, r,
                                        [](const SurfaceHit&, const Vec3&, const scene::BsdfSample&) { return true; });
     ++c.mnee_scan_rays;
     if (!ok) continue;

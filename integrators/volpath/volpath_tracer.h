@@ -140,13 +140,14 @@ class VolpathTracer {
   // Calls f(direction) for MNEE's seed directions across the bounds b (mnee_seeds - 1).
   template <typename F>
   void for_seeds(const Vec3& xp, const Vec3& y, const Bounds3& b, const F& f) const;
-  // Calls f(direction) for each seed of mnee_scan's, or for `fallback` if it has none.
+  // Calls f(direction) for each seed of one chain family across the bounds b: mnee_scan's
+  // (or `first` if it has none), or with mnee_scan 0 `first` and for_seeds'.
   template <typename F>
-  void across(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
-              const Vec3& fallback, const F& f, VolpathCounters& counters) const;
+  void seed_family(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape, const Bounds3& b,
+                   const Vec3& first, const F& f, VolpathCounters& counters) const;
   // Seeds from a scan of the chain's miss across the bounds b (mnee_scan directions;
   // volpath_mnee_scan.cpp): their count.
-  int mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, uint32_t mask, int shape,
+  int mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape,
                 const Bounds3& b, MneeSeeds& seeds, VolpathCounters& counters) const;
   // MNEE's NEE side: beta-less contribution F(X) / p_L * w_L of the probe's light point.
   Rgb mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& counters) const;
