@@ -399,7 +399,7 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
   random_walk(scene, ray, beta, scene::TransportMode::importance, params, rng, out);
 }
 
-bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta) {
+bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta, BidirVertex* endpoint) {
   const float u_light = rng.uniform();
   const Vec2 u_pos = rng.uniform2(), u_dir = rng.uniform2();
   float pmf = 0.0f;
@@ -409,6 +409,7 @@ bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& be
   float pdf_ray = 0.0f;
   if (!light_endpoint(scene, e, u_pos, u_dir, y0, ray, pdf_ray)) return false;
   beta = y0.beta * light_emit_cos(y0, ray.d) / pdf_ray;  // as leave_light
+  if (endpoint) *endpoint = y0;
   return !is_black(beta) && is_finite(beta);
 }
 

@@ -35,8 +35,9 @@ void light_subpath(const scene::Scene& scene, const SubpathParams& params, core:
 // y_0 and its direction (same random numbers), and the throughput it carries,
 // Le |cos| / (p(y_0) p(direction)) (lights at infinity: planar origin density). False
 // when nothing is emitted. Light tracers that walk their own paths (photons through
-// media, integrators/media_photons) start here.
-bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta);
+// media, integrators/media_photons; volpath's light tracing) start here. `endpoint`, if
+// given, receives y_0 (its emitter, position, normal and pdf_fwd = light_pdf_pos).
+bool emit_light_ray(const scene::Scene& scene, core::Rng& rng, Ray& ray, Rgb& beta, BidirVertex* endpoint = nullptr);
 
 // Continues `path` (a subpath in `mode`'s order: light-first for importance, camera-
 // first for radiance) by exactly n vertices, without Russian roulette: an empty path
