@@ -42,7 +42,7 @@ namespace {
 
 // Integrators whose settings select another algorithm, stressed as well (name:key=value,...).
 constexpr const char* kSettingVariants[] = {"mlt:mutations=path", "gdmlt:mutations=path", "beam:kernel=1d",
-                                            "volpath:mnee_shapes=true"};
+                                            "volpath:mnee_shapes=true,light_tracing=true"};
 
 // "name" or "name:key=value,key=value" (the settings of a variant).
 std::unique_ptr<integrators::Integrator> make_variant(const std::string& spec, integrators::Settings& settings) {

@@ -34,11 +34,6 @@ bool same_chain(const MneeConnection& a, const MneeConnection& b, float tol) {
   return true;
 }
 
-double power_heuristic_d(double a, double b) {
-  const double a2 = a * a, b2 = b * b;
-  return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
-}
-
 }  // namespace
 
 template <typename F>
@@ -227,9 +222,13 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
   if (is_black(f) || !(p > 0.0)) return out;
   r = mnee_leave(m_scene, x, w0);
   Rgb tr_all = Rgb::Ones(), tr;
+  // Light tracing's factors (x.lt): the Dirac lobes' selection probabilities and
+  // free flight's along the chain (passing every segment, scattering at a medium x).
+  double lobes = 1.0, flights = 1.0;
+  double* flight = x.lt ? &flights : nullptr;
   for (int i = 0; i <= m; ++i) {
     const Vec3 target = i < m ? out.verts[size_t(i)] : y;
-    const MarchEnd end = march(r, medium, nullptr, rng, c, tr, h);
+    const MarchEnd end = march(r, medium, nullptr, rng, c, tr, h, flight, i == 0 && !x.surface);
     const bool there = end == MarchEnd::surface && (h.p - target).norm() <= tol;
     if (!there || (i < m ? h.shape != X.v[size_t(i + 1)].shape : !h.emitter)) {
       ++c.mnee_occluded;
@@ -246,6 +245,7 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
     }
     f *= bs->weight * bs->pdf;  // f_i |cos_i|
     p *= double(bs->pdf);
+    lobes *= double(bs->pdf);
     medium = scene::medium_toward(h, wo, medium, m_camera_medium);
     r = m_scene.continue_ray(h, wo);
   }
@@ -259,43 +259,53 @@ MneeConnection VolpathTracer::mnee_solve(const MneeAnchor& x, const Vec3& y, con
   out.p_light = p_light;
   out.p_bsdf = p * D;
   out.D = D;
+  if (flight) out.p_trace = light_trace_density(x, *h.emitter, y, n_y, out.verts[size_t(m - 1)], lobes * flights, G);
   out.s1 = X.v[1].p();
   out.ok = is_finite(out.value) && std::isfinite(out.p_bsdf);
   return out;
 }
 
-Rgb VolpathTracer::mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& c) const {
+Rgb VolpathTracer::mnee_nee(const MneeAnchor& x, const NeeProbe& probe, const CameraVertex& prev, core::Rng& rng,
+                            VolpathCounters& c) const {
   const MneeSolutions S = mnee_connect(x, probe.y, probe.n, m_max_depth - x.depth - 1, probe.try_chain, rng, c);
   const bool no_mis = m_settings.fault == VolpathFault::mnee_without_mis;
+  // Light tracing's weight needs the camera's density of x (only where a solution exists).
+  const double cam_pdf = x.lt && S.count > 0 ? camera_pdf(prev, x, rng, c) : 0.0;
   Rgb sum = Rgb::Zero();
   for (int i = 0; i < S.count; ++i) {
     const MneeConnection& X = S.x[size_t(i)];
-    sum += X.value * float(no_mis ? 1.0 : power_heuristic_d(X.p_light, X.p_bsdf));
+    sum += X.value * float(no_mis ? 1.0 : mnee_mis(X.p_light, X.p_bsdf, trace_over(X, cam_pdf)));
   }
   c.mnee_connections += S.count;
   return sum;
 }
 
+bool VolpathTracer::mnee_find(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, const MneeConnection& path,
+                              core::Rng& rng, VolpathCounters& c, MneeConnection& match) const {
+  VolpathCounters scratch;  // MNEE's own counters count its NEE side only
+  const MneeSolutions S = mnee_connect(x, y, n_y, m_max_depth - x.depth - 1, true, rng, scratch);
+  c.null_limit += scratch.null_limit;
+  const float tol = match_tolerance(m_scene);
+  for (int i = 0; i < S.count; ++i)
+    if (same_chain(S.x[size_t(i)], path, tol)) {
+      match = S.x[size_t(i)];
+      return true;
+    }
+  return false;
+}
+
 float VolpathTracer::mnee_bsdf_weight(const ChainTrack& chain, const SurfaceHit& hit, core::Rng& rng,
                                       VolpathCounters& c) const {
   ++c.mnee_bsdf_hits;
-  VolpathCounters scratch;  // MNEE's own counters count its NEE side only
-  const MneeSolutions S =
-      mnee_connect(chain.anchor, hit.p, hit.ng, m_max_depth - chain.anchor.depth - 1, true, rng, scratch);
-  c.null_limit += scratch.null_limit;
-  MneeConnection path;
+  MneeConnection path, X;
   path.m = chain.m;
   path.reflect_mask = chain.reflect_mask;
   path.verts = chain.verts;
-  const float tol = match_tolerance(m_scene);
-  for (int i = 0; i < S.count; ++i) {
-    const MneeConnection& X = S.x[size_t(i)];
-    if (!same_chain(X, path, tol)) continue;
-    ++c.mnee_bsdf_matched;
-    if (m_settings.fault == VolpathFault::mnee_without_mis) return 1.0f;
-    return float(power_heuristic_d(X.p_bsdf, X.p_light));
-  }
-  return 1.0f;
+  if (!mnee_find(chain.anchor, hit.p, hit.ng, path, rng, c, X)) return 1.0f;
+  ++c.mnee_bsdf_matched;
+  if (m_settings.fault == VolpathFault::mnee_without_mis) return 1.0f;
+  const double cam_pdf = chain.anchor.lt ? camera_pdf(chain.prev, chain.anchor, rng, c) : 0.0;
+  return float(mnee_mis(X.p_bsdf, X.p_light, trace_over(X, cam_pdf)));
 }
 
 }  // namespace dp::integrators

@@ -48,6 +48,11 @@
 // path MNEE can return: the combination is unbiased (Veach 1997, Sec. 9.2), including
 // where MNEE misses solutions (near caustic folds), at the cost of variance only.
 //
+// Light tracing (setting light_tracing; volpath_light.cpp) adds a third technique: a light
+// path light -> chain -> x joined to the camera or to the camera-path vertex before x. Its
+// density p_T, in the units of p_L and p_B (over the camera path's density of x), joins
+// both weights: w = p^2 / (p_L^2 + p_B^2 + p_T^2).
+//
 // Scope: finite area lights (point, spot and directional lights and environments are left
 // to plain NEE), scenes with media (volpath's media variant; the variant without media is
 // `path`'s algorithm). Counters `volpath.mnee.*`.
@@ -79,6 +84,7 @@ struct MneeAnchor {
   Vec3 d_in{0, 0, 1};      // medium: the direction the path arrived along
   int medium = -1;         // the medium the path arrived in (medium: the point's)
   int depth = 0;           // segments up to x (volpath's depth at the vertex)
+  bool lt = false;          // light tracing can make its paths (a camera-path vertex precedes x)
   const Vec3& position() const { return surface ? hit.p : p; }
   static MneeAnchor at_surface(const scene::SurfaceHit& hit, const Vec3& wi_local, int medium, int depth) {
     MneeAnchor x;
@@ -138,11 +144,23 @@ struct MneeConnection {
   double p_light = 0;       // p_L(y), area measure
   double p_bsdf = 0;        // p_B(X), area measure
   double D = 0;             // d w_0 / dA(y)
+  double p_trace = 0;       // x.lt: light tracing's density without the camera's of x (0: none)
   Vec3d s1{0, 0, 0};        // s_1 in double (the walked chain's)
   int m = 0;                  // Dirac vertices
   uint32_t reflect_mask = 0;  // bit i: s_{i+1} reflects (else it refracts)
   std::array<Vec3, kMaxMneeChain> verts{};  // s_1 .. s_m
 };
+
+// The power heuristic over MNEE's three techniques, for the one of density a:
+// a^2 / (a^2 + b^2 + c^2) (c = 0 where light tracing cannot make the path).
+inline double mnee_mis(double a, double b, double c) {
+  const double a2 = a * a, sum = a2 + b * b + c * c;
+  return sum > 0.0 ? a2 / sum : 0.0;
+}
+
+// Light tracing's density of solution X over the camera path's density of its anchor
+// (p_L's units; 0 without a camera density).
+inline double trace_over(const MneeConnection& X, double cam_pdf) { return cam_pdf > 0.0 ? X.p_trace / cam_pdf : 0.0; }
 
 // The distinct solutions S(x, y) that the seeds reach.
 struct MneeSolutions {

@@ -33,6 +33,11 @@ VolpathSettings VolpathSettings::read(Settings& s) {
                            "through the chain to the light's plane, and each sign change of the miss (or a "
                            "near-zero minimum, a caustic fold) seeds a walk (0: the fixed seeds of mnee_seeds)");
   v.mnee_iterations = s.get_int("mnee_iterations", v.mnee_iterations, "Newton steps of an MNEE manifold walk");
+  v.light_tracing = s.get_bool("light_tracing", v.light_tracing,
+                               "with MNEE: one light path per camera sample through glass, joined to the camera "
+                               "(splatted) and to every camera-path vertex, MIS-weighted with MNEE and BSDF sampling: "
+                               "for small lights seen through glass, whose MNEE estimates are heavy-tailed near the "
+                               "caustic's folds (homogeneous media, area lights)");
   if (v.rr_depth < 1) throw ValueError("setting 'rr_depth' must be >= 1", "--set");
   if (v.mnee_max_chain < 1 || v.mnee_max_chain > 8)
     throw ValueError("setting 'mnee_max_chain' must be in 1 .. 8", "--set");

@@ -19,6 +19,7 @@ enum class VolpathFault : uint8_t {
   medium_nee_without_mis,     // NEE at medium vertices weighted 1 (phase sampling still MIS-weighted)
   mnee_without_mis,           // MNEE and the paths it can also sample both weighted 1 (counted twice)
   mnee_planar_geometry,       // MNEE's D = 1 / |y - s_m|^2, the unrefracted last segment's
+  light_tracing_without_mis,  // light tracing's splats weighted 1 (MNEE and BSDF sampling still count it)
   equiangular_without_mis,    // equiangular NEE weighted 1 (free-flight NEE and phase hits still MIS-weighted)
 };
 
@@ -33,6 +34,7 @@ struct VolpathSettings {
   int mnee_seeds = 5;          // with mnee_scan 0: seed directions per connection (1: the straight line only; <= kMaxMneeSeeds)
   int mnee_scan = 24;          // seeds from a scan of this many directions (0: mnee_seeds' fixed seeds; volpath_mnee_scan.cpp)
   int mnee_iterations = 20;    // Newton steps of MNEE's manifold walk (Jakob & Marschner 2012)
+  bool light_tracing = false;  // with MNEE, light paths through glass joined to the camera path, MIS with MNEE (volpath_light.cpp)
   VolpathFault fault = VolpathFault::none;  // tests only, never read from settings
 
   static VolpathSettings read(Settings& s);

@@ -45,6 +45,12 @@ void VolpathCounters::flush(core::Stats& stats) const {
   stats.add("volpath.mnee.scan.fallbacks", mnee_scan_fallbacks);
   stats.add("volpath.mnee.bsdf_hits", mnee_bsdf_hits);
   stats.add("volpath.mnee.bsdf_matched", mnee_bsdf_matched);
+  stats.add("volpath.light.paths", light_paths);
+  stats.add("volpath.light.chains", light_chains);
+  stats.add("volpath.light.links", light_links);
+  stats.add("volpath.light.blocked", light_blocked);
+  stats.add("volpath.light.unmatched", light_unmatched);
+  stats.add("volpath.light.added", light_added);
   if (mnee_walks.attempted > 0) mnee_walks.flush(stats, "volpath.mnee.walk");
   if (mnee_seeds.attempted > 0) mnee_seeds.flush(stats, "volpath.mnee.seed");
 }
@@ -72,10 +78,12 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
       m_has_media(scene.caps().has_media),
       m_camera_medium(scene.camera_medium()),
       m_mnee(false),
-      m_equiangular(m_has_media && settings.equiangular && settings.nee) {
+      m_equiangular(m_has_media && settings.equiangular && settings.nee),
+      m_light_tracing(false) {
   if (!m_has_media || !settings.mnee || !settings.nee) return;
   for (const auto& b : scene.bsdfs())
     if (b && b->is_purely_delta() && (b->lobes() & scene::kDeltaTransmission) != 0) m_mnee = true;
+  set_light_tracing();
   if (!settings.mnee_shapes) return;
   for (size_t i = 0; i < scene.shapes().size(); ++i) {
     const int mat = scene.shapes()[i]->material;
@@ -85,10 +93,12 @@ VolpathTracer::VolpathTracer(const scene::Scene& scene, const VolpathSettings& s
   }
   if (m_shapes.size() > size_t(kMaxMneeShapes)) m_shapes.clear();
   if (!m_shapes.empty()) m_mnee = true;
+  set_light_tracing();
 }
 
 VolpathTracer::MarchEnd VolpathTracer::march(Ray r, int& medium, const Vec3* target, core::Rng& rng,
-                                             VolpathCounters& c, Rgb& tr, SurfaceHit& h) const {
+                                             VolpathCounters& c, Rgb& tr, SurfaceHit& h, double* flight,
+                                             bool scatter_at_origin) const {
   tr = Rgb::Ones();
   for (int crossings = 0;; ++crossings) {
     const bool found = m_scene.intersect(r, h);
@@ -99,6 +109,9 @@ VolpathTracer::MarchEnd VolpathTracer::march(Ray r, int& medium, const Vec3* tar
       const scene::HomogeneousMedium& med = m_scene.media()[size_t(medium)];
       const float len = found ? h.t : r.tmax;
       tr *= med.heterogeneous() ? scene::transmittance_grid(med, r.o, r.d, len, rng) : scene::transmittance(med, len);
+      if (flight)
+        *flight *= double(crossings == 0 && scatter_at_origin ? scene::free_flight_pdf(med, len)
+                                                              : scene::free_flight_pass_probability(med, len));
     }
     if (!found) return MarchEnd::reached;
     if (!scene::is_index_matched(h)) return MarchEnd::surface;  // an opaque or refractive surface
@@ -198,7 +211,7 @@ Rgb VolpathTracer::next_event_medium(const Vec3& p, const Vec3& d, int medium, c
 }
 
 template <bool kMedia>
-Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c) const {
+Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c, const LightEnd* light) const {
   Rgb L = Rgb::Zero(), beta = Rgb::Ones();
   Ray ray = primary;
   bool prev_delta = true;  // the camera is a "delta" for MIS: directly seen lights count fully
@@ -214,6 +227,10 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
   bool from_surface = false;
   ChainTrack chain;  // MNEE's view of the path since its last non-specular vertex
   FlightSegment flight;  // the last vertex's free-flight segment, if it was a medium vertex (equiangular MIS)
+  // Light tracing (volpath_light.cpp): the last vertex, where the camera path can be joined
+  // to a light path (none after a Dirac sample), and the light path to join.
+  CameraVertex prev_v = m_light_tracing ? camera_vertex() : CameraVertex{};
+  if (light && !light->ok) light = nullptr;
   for (int depth = 1; depth <= m_max_depth;) {
     const bool found = from_surface ? m_scene.trace_from(hit, ray.d, hit) : m_scene.intersect(ray, hit);
     ++c.rays;
@@ -245,8 +262,12 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
           if (m_mnee) {  // NEE, then MNEE with its light sample (volpath_mnee.h)
             NeeProbe probe;
             L += beta * next_event_medium(p, ray.d, medium, rng, c, &probe, fs);
-            chain.start(MneeAnchor::in_medium(p, ray.d, medium, depth));
-            if (probe.area_light) L += beta * mnee_nee(chain.anchor, probe, rng, c);
+            chain.start(linked(MneeAnchor::in_medium(p, ray.d, medium, depth), prev_v), prev_v);
+            if (probe.area_light) L += beta * mnee_nee(chain.anchor, probe, chain.prev, rng, c);
+            if (m_light_tracing) {  // this vertex, joined to the light path and kept for the next anchor
+              prev_v = CameraVertex::of(chain.anchor, beta);
+              if (light) L += connect_light(*light, prev_v, rng, c);
+            }
           } else if (m_settings.nee) {
             L += beta * next_event_medium(p, ray.d, medium, rng, c, nullptr, fs);
           }
@@ -313,11 +334,15 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (!consistent_side(hit, -ray.d, wi_local.z())) break;
     ++c.surface_events;
     const BsdfContext ctx{hit.uv, scene::TransportMode::radiance};
+    MneeAnchor anchor;  // MNEE's anchor at a non-Dirac surface vertex (prev_v: the camera vertex before it)
+    if (kMedia && m_mnee && !hit.bsdf->is_purely_delta())
+      anchor = linked(MneeAnchor::at_surface(hit, wi_local, medium, depth), prev_v);
+    if (kMedia && light && !hit.bsdf->is_purely_delta())  // joined to the light path
+      L += connect_light(*light, CameraVertex::of(anchor, beta), rng, c);
     if (m_settings.nee && !hit.bsdf->is_purely_delta()) {
       NeeProbe probe;
       L += beta * next_event_surface<kMedia>(hit, wi_local, ctx, medium, rng, c, kMedia && m_mnee ? &probe : nullptr);
-      if (kMedia && probe.area_light)  // MNEE with NEE's light sample (volpath_mnee.h)
-        L += beta * mnee_nee(MneeAnchor::at_surface(hit, wi_local, medium, depth), probe, rng, c);
+      if (kMedia && probe.area_light) L += beta * mnee_nee(anchor, probe, prev_v, rng, c);  // MNEE with NEE's light sample
     }
 
     const float u_lobe = rng.uniform();
@@ -328,7 +353,7 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
     if (!consistent_side(hit, wo, bs->wo.z())) break;
     if (kMedia && m_mnee) {  // the anchor x, or one more refraction after it (volpath_mnee.h)
       if (!bs->is_delta()) {
-        chain.start(MneeAnchor::at_surface(hit, wi_local, medium, depth));
+        chain.start(anchor, prev_v);
       } else if (chain.active && chain.m < kMaxMneeChain &&
                  (bs->lobe == scene::kDeltaReflection || (bs->lobe == scene::kDeltaTransmission && bs->eta != 1.0f))) {
         if (bs->lobe == scene::kDeltaReflection) chain.reflect_mask |= 1u << chain.m;
@@ -337,6 +362,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
         chain.active = false;
       }
     }
+    if (kMedia && m_light_tracing)  // the next anchor's camera vertex (none after a Dirac lobe)
+      prev_v = bs->is_delta() ? CameraVertex{} : CameraVertex::of(anchor, beta);
     beta *= bs->weight;
     flight.active = false;
     prev_delta = bs->is_delta();
@@ -351,8 +378,8 @@ Rgb VolpathTracer::trace(const Ray& primary, core::Rng& rng, VolpathCounters& c)
   return L;
 }
 
-Rgb VolpathTracer::radiance(const Ray& ray, core::Rng& rng, VolpathCounters& counters) const {
-  return m_has_media ? trace<true>(ray, rng, counters) : trace<false>(ray, rng, counters);
+Rgb VolpathTracer::radiance(const Ray& ray, core::Rng& rng, VolpathCounters& counters, const LightEnd* light) const {
+  return m_has_media ? trace<true>(ray, rng, counters, light) : trace<false>(ray, rng, counters, nullptr);
 }
 
 }  // namespace dp::integrators

@@ -60,6 +60,13 @@ struct VolpathCounters {
   int64_t mnee_scan_fallbacks = 0; // scans without a seed: one walk from the straight (or centre) direction
   int64_t mnee_bsdf_hits = 0;    // BSDF/phase paths reaching a light through refractions only
   int64_t mnee_bsdf_matched = 0; // ... that MNEE also returns (weighted by MIS, else 1)
+  // Light tracing (volpath_light.cpp).
+  int64_t light_paths = 0;      // light paths traced
+  int64_t light_chains = 0;     // ... reaching a vertex x after Dirac vertices only
+  int64_t light_links = 0;      // connections of x to the camera or a camera-path vertex
+  int64_t light_blocked = 0;    // ... occluded, outside the image, or with no value
+  int64_t light_unmatched = 0;  // ... MNEE does not return the chain (left to BSDF sampling)
+  int64_t light_added = 0;      // ... with a value (splatted, or added to the camera sample)
   // Equiangular NEE (volpath_equiangular.cpp).
   int64_t equiangular_samples = 0;   // segments with an equiangular light connection
   int64_t equiangular_skipped = 0;   // ... none: a light at infinity drawn, or y on the ray's line
@@ -72,8 +79,32 @@ struct VolpathCounters {
 class VolpathTracer {
  public:
   VolpathTracer(const scene::Scene& scene, const VolpathSettings& settings, int max_depth);
-  // Radiance arriving at the camera along `ray` (may be non-finite; the caller drops it).
-  Rgb radiance(const Ray& ray, core::Rng& rng, VolpathCounters& counters) const;
+  // Light tracing (volpath_light.cpp): the end x of a light path that reached it through
+  // Dirac vertices only (light -> s_m .. s_1 -> x), to be connected to the camera and to
+  // every vertex of the camera path.
+  struct LightEnd {
+    bool ok = false;
+    bool surface = false;
+    scene::SurfaceHit hit;   // surface: x
+    Vec3 p{0, 0, 0};         // x
+    Vec3 d_in{0, 0, 1};      // the direction the light path arrived along
+    int medium = -1;         // the medium it arrived in
+    Rgb beta = Rgb::Zero();  // its throughput arriving at x (with x's free-flight weight)
+    MneeConnection chain;    // s_1 .. s_m in MNEE's order (m, reflect_mask, verts)
+    const scene::Emitter* emitter = nullptr;
+    Vec3 y{0, 0, 0}, n_y{0, 0, 1};
+  };
+  // Radiance arriving at the camera along `ray` (may be non-finite; the caller drops it);
+  // with `light`, its connections to the camera path's vertices are included.
+  Rgb radiance(const Ray& ray, core::Rng& rng, VolpathCounters& counters, const LightEnd* light = nullptr) const;
+  // Light tracing runs: settings.light_tracing, MNEE on, homogeneous media.
+  bool light_tracing() const { return m_light_tracing; }
+  // One light path (one per camera sample); false if it reached no x.
+  bool trace_light(core::Rng& rng, VolpathCounters& counters, LightEnd& out) const;
+  // Its connection to the camera: false if it adds nothing, else the pixel it lands in
+  // (`raster`, continuous) and its MIS-weighted value, in units where the image is
+  // sum(values) * pixel count / light paths (pathspace/bidir_connect.h, t = 1).
+  bool splat_light(const LightEnd& light, core::Rng& rng, VolpathCounters& counters, Vec2& raster, Rgb& value) const;
   // A guard against rays caught between index-matched boundaries (numerical trouble):
   // more crossings than this end the path (or block the shadow ray), counted.
   static constexpr int kMaxNullCrossings = 256;
@@ -114,8 +145,26 @@ class VolpathTracer {
   // an index-matched boundary (surface; `stop`), or the crossing limit.
   enum class MarchEnd : uint8_t { reached, surface, limit };
   // Transmittance of `r` (starting in `medium`, updated at each index-matched crossing).
+  // `flight` (light tracing, homogeneous media): multiplied by free flight's probability
+  // of passing each sub-segment, or with scatter_at_origin its density of a scatter at
+  // r.o for the first one (a flight toward r.o ending there).
   MarchEnd march(Ray r, int& medium, const Vec3* target, core::Rng& rng, VolpathCounters& counters, Rgb& tr,
-                 scene::SurfaceHit& stop) const;
+                 scene::SurfaceHit& stop, double* flight = nullptr, bool scatter_at_origin = false) const;
+  // Light tracing (volpath_light.cpp). A vertex of the camera path that light tracing
+  // connects to: the camera (depth 0), a medium or a non-Dirac surface vertex.
+  struct CameraVertex {
+    enum class Kind : uint8_t { none, camera, medium, surface } kind = Kind::none;
+    MneeAnchor at;           // the vertex as MNEE's anchor: position, arrival, medium, depth
+    Rgb beta = Rgb::Ones();  // the camera path's throughput arriving here
+    const Vec3& p() const { return at.position(); }
+    static CameraVertex of(const MneeAnchor& a, const Rgb& beta) {
+      CameraVertex v;
+      v.kind = a.surface ? Kind::surface : Kind::medium;
+      v.at = a;
+      v.beta = beta;
+      return v;
+    }
+  };
   // The MIS weight of a BSDF/phase path that reached the light `hit` through the
   // refractions `chain` after the anchor x (volpath_mnee.h, "The BSDF side").
   struct ChainTrack {
@@ -124,9 +173,11 @@ class VolpathTracer {
     int m = 0;
     uint32_t reflect_mask = 0;
     std::array<Vec3, kMaxMneeChain> verts{};
-    void start(const MneeAnchor& x) {  // a new anchor: no Dirac vertex after it yet
+    CameraVertex prev;  // the camera vertex before x (light tracing)
+    void start(const MneeAnchor& x, const CameraVertex& v) {  // a new anchor: no Dirac vertex after it yet
       active = true;
       anchor = x;
+      prev = v;
       m = 0;
       reflect_mask = 0;
     }
@@ -150,9 +201,39 @@ class VolpathTracer {
   int mnee_scan(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, int m, int shape,
                 const Bounds3& b, MneeSeeds& seeds, VolpathCounters& counters) const;
   // MNEE's NEE side: beta-less contribution F(X) / p_L * w_L of the probe's light point.
-  Rgb mnee_nee(const MneeAnchor& x, const NeeProbe& probe, core::Rng& rng, VolpathCounters& counters) const;
+  // `prev`: the camera vertex before x, for light tracing's weight (x.lt).
+  Rgb mnee_nee(const MneeAnchor& x, const NeeProbe& probe, const CameraVertex& prev, core::Rng& rng,
+               VolpathCounters& counters) const;
   float mnee_bsdf_weight(const ChainTrack& chain, const scene::SurfaceHit& hit, core::Rng& rng,
                          VolpathCounters& counters) const;
+  // The solution of S(x, y) that is `path` (its m, reflect_mask and verts), if MNEE returns it.
+  bool mnee_find(const MneeAnchor& x, const Vec3& y, const Vec3& n_y, const MneeConnection& path, core::Rng& rng,
+                 VolpathCounters& counters, MneeConnection& match) const;
+
+  // Light tracing (volpath_light.cpp): the camera vertex.
+  CameraVertex camera_vertex() const;
+  // The link from camera vertex v to anchor x: the camera path's density of x drawn from v
+  // (v's direction density / d^2, |cos| at a surface x, free flight's along the segment;
+  // camera: pdf_direction), v's scattering value f_v toward x (BSDF |cos|, phase; camera:
+  // pdf_direction) and the transmittance; false if the segment is blocked.
+  bool link(const CameraVertex& v, const MneeAnchor& x, core::Rng& rng, VolpathCounters& counters, double& pdf,
+            Rgb& f_v, Rgb& tr) const;
+  // x with lt set where light tracing can make its paths: a camera vertex v precedes it.
+  MneeAnchor linked(MneeAnchor x, const CameraVertex& v) const {
+    x.lt = m_light_tracing && v.kind != CameraVertex::Kind::none;
+    return x;
+  }
+  // The camera path's density of x drawn from v (link's), 0 if the segment is blocked.
+  double camera_pdf(const CameraVertex& v, const MneeAnchor& x, core::Rng& rng, VolpathCounters& counters) const;
+  // The light path's end joined to camera vertex v: the unweighted value times light
+  // tracing's MIS weight (0 where MNEE does not return its chain).
+  Rgb connect_light(const LightEnd& light, const CameraVertex& v, core::Rng& rng, VolpathCounters& counters) const;
+  // Light tracing's density of the path x, s_1 .. s_m, y (light `e`, normal n_y; s_m the
+  // vertex next to y) without the camera side's density of x: p_pos(y) p_dir(y -> s_m)
+  // `factors` G / |cos_y|, with factors the Dirac lobes' and free flight's probabilities,
+  // G the generalized geometry term.
+  double light_trace_density(const MneeAnchor& x, const scene::Emitter& e, const Vec3& y, const Vec3& n_y,
+                             const Vec3& s_m, double factors, double G) const;
 
   // Equiangular NEE on the segment ray.o + t ray.d, t in [0, t_max], of a medium:
   // beta-less, MIS-weighted (volpath_equiangular.cpp).
@@ -168,7 +249,8 @@ class VolpathTracer {
   float flight_pdf(int medium, const Vec3& o, const Vec3& d, float t) const;
 
   template <bool kMedia>
-  Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters) const;
+  Rgb trace(const Ray& primary, core::Rng& rng, VolpathCounters& counters, const LightEnd* light) const;
+  void set_light_tracing();  // m_light_tracing from the settings and the scene
 
   const scene::Scene& m_scene;
   VolpathSettings m_settings;
@@ -177,6 +259,7 @@ class VolpathTracer {
   int m_camera_medium;
   bool m_mnee;  // settings.mnee, nee, and a refractive surface in a scene with media
   bool m_equiangular;  // settings.equiangular and nee in a scene with media
+  bool m_light_tracing;  // settings.light_tracing, m_mnee, homogeneous media only
   std::vector<int> m_shapes;  // specular shapes of MNEE's shape families (volpath_mnee.h)
 };
 

@@ -203,6 +203,7 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   integrators::VolpathSettings on;
   on.mnee = true;
   on.mnee_shapes = true;
+  on.light_tracing = true;
   integrators::RenderResult last;
   const test::BlockStats plain = blocks(*s, off, 100);
   const test::BlockStats mnee = blocks(*s, on, 200, &last);
@@ -212,6 +213,11 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   CHECK(last.stats.get("volpath.mnee.connections") > 0);
   CHECK(last.stats.get("volpath.mnee.shape_attempts") > 0);
   CHECK(last.stats.get("volpath.mnee.bsdf_matched") > 0);
+  // Light tracing (volpath_light.cpp) joined light paths through
+  // the ball to the camera and to camera-path vertices, and MNEE returned their chains.
+  CHECK(last.stats.get("volpath.light.chains") > 0);
+  CHECK(last.stats.get("volpath.light.added") > 0);
+  CHECK(last.info["light_paths"].number() > 0.0);
   CHECK(last.stats.get("volpath.nan_dropped") == 0);
   const double worst = test::sidak_welch(mnee, plain, 0.01);
 
@@ -223,15 +229,21 @@ TEST_CASE("volpath: MNEE with MIS leaves the fogged caustic box unchanged; two M
   integrators::VolpathSettings planar = no_mis;
   planar.fault = integrators::VolpathFault::mnee_planar_geometry;
   const double worst_planar = test::sidak_welch(blocks(*s, planar, 400), plain, 0.01);
+  integrators::VolpathSettings lt_no_mis = on;  // light tracing's paths counted a second time
+  lt_no_mis.mnee_shapes = false;
+  lt_no_mis.fault = integrators::VolpathFault::light_tracing_without_mis;
+  const double worst_lt = test::sidak_welch(blocks(*s, lt_no_mis, 500), plain, 0.01);
   std::printf("[volpath MNEE vs none, fogged caustic box] worst |t|/crit %.2f; without MIS %.2f; planar D %.2f; "
-              "chains %lld, connections %lld, BSDF paths matched %lld of %lld\n",
-              worst, worst_no_mis, worst_planar, (long long)last.stats.get("volpath.mnee.chains"),
-              (long long)last.stats.get("volpath.mnee.connections"),
+              "light tracing without MIS %.2f; chains %lld, connections %lld, light paths joined %lld, BSDF paths "
+              "matched %lld of %lld\n",
+              worst, worst_no_mis, worst_planar, worst_lt, (long long)last.stats.get("volpath.mnee.chains"),
+              (long long)last.stats.get("volpath.mnee.connections"), (long long)last.stats.get("volpath.light.added"),
               (long long)last.stats.get("volpath.mnee.bsdf_matched"),
               (long long)last.stats.get("volpath.mnee.bsdf_hits"));
   CHECK(worst < 1.0);
   CHECK(worst_no_mis > 1.0);
   CHECK(worst_planar > 1.0);
+  CHECK(worst_lt > 1.0);
 }
 
 // MNEE's scanned seeds (mnee_scan; integrators/volpath/volpath_mnee_scan.cpp) against every
