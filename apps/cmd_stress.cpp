@@ -32,10 +32,10 @@ void run(const StressArgs& a) {
 void register_stress(CLI::App& app) {
   auto args = std::make_shared<StressArgs>();
   CLI::App* cmd = app.add_subcommand("stress", "numerical stability run over randomized hard scenes, every integrator");
-  cmd->add_flag("--quick", args->options.quick, "CI version: one small variant per scene family");
+  cmd->add_flag("--quick", args->options.quick, "CI version: two small variants per scene family, fewer beam/plane light paths");
   cmd->add_option("--seed", args->options.seed, "randomization seed (default 1)");
   cmd->add_option("--integrator", args->options.integrators, "only these integrators (repeatable; default all)");
-  cmd->add_option("--variants", args->options.variants, "random variants per scene family (default 1 quick, 3 full)");
+  cmd->add_option("--variants", args->options.variants, "random variants per scene family (default 2 quick, 4 full)");
   cmd->add_option("--threads", args->options.threads, "worker threads (default: all cores)")->check(thread_count());
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_option("--images", args->options.image_dir, "write a PNG preview of every render into this folder");

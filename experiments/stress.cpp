@@ -44,9 +44,21 @@ namespace {
 constexpr const char* kSettingVariants[] = {"mlt:mutations=path", "gdmlt:mutations=path", "beam:kernel=1d",
                                             "volpath:mnee_shapes=true,light_tracing=true"};
 
+// Quick mode: the photon-beam and photon-plane estimators trace this many light paths per
+// iteration instead of their default 20 000. Each of their paths meets ~10-100x as many
+// camera segments as a photon point does, so at the defaults these four took ~190 of the
+// ~240 s of `--quick` (session 23); the full run keeps the defaults.
+constexpr const char* kQuickPhotonIntegrators[] = {"beam", "gbeam", "plane", "gplane"};
+constexpr const char* kQuickPhotons = "2000";
+
 // "name" or "name:key=value,key=value" (the settings of a variant).
-std::unique_ptr<integrators::Integrator> make_variant(const std::string& spec, integrators::Settings& settings) {
+std::unique_ptr<integrators::Integrator> make_variant(const std::string& spec, integrators::Settings& settings,
+                                                      bool quick) {
   const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  if (quick && !settings.has("photons"))
+    for (const char* n : kQuickPhotonIntegrators)
+      if (name == n) settings.set("photons", kQuickPhotons, "stress --quick");
   if (colon == std::string::npos) return integrators::make_integrator(spec, settings);
   size_t at = colon + 1;
   while (at < spec.size()) {
@@ -57,7 +69,7 @@ std::unique_ptr<integrators::Integrator> make_variant(const std::string& spec, i
     settings.set(kv.substr(0, eq), kv.substr(eq + 1));
     at = end + 1;
   }
-  return integrators::make_integrator(spec.substr(0, colon), settings);
+  return integrators::make_integrator(name, settings);
 }
 
 }  // namespace
@@ -79,7 +91,7 @@ StressReport run_stress(const StressOptions& options) {
       for (int v = 0; v < variants; ++v) {
         const StressScene s = make_stress_scene(family, v, options.seed, resolution);
         integrators::Settings settings;
-        auto integrator = make_variant(name, settings);
+        auto integrator = make_variant(name, settings, options.quick);
         if (s.scene->caps().has_media && !integrator->renders_media()) {  // it would render the media as vacuum
           c.skipped = "no media support";
           break;

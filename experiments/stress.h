@@ -6,7 +6,8 @@
 //   - failure and outlier counters by cause (counters whose name contains "fail",
 //     "jacobian", "outlier", "diverged" or "not_invertible"),
 //   - the largest finite pixel value over all layers and counters containing "max".
-// Quick mode (CI): two variants per family at 32x32, 4 spp. Full: 4 variants, 64x64, 16 spp.
+// Quick mode (CI): two variants per family at 32x32, 4 spp, and the photon-beam/-plane
+// estimators at 2 000 light paths per iteration. Full: 4 variants, 64x64, 16 spp, defaults.
 #pragma once
 
 #include <cstdint>
