@@ -89,6 +89,20 @@ int64_t accumulate_tile(const Tile& tile, int spp, core::Rng& rng, int width, st
   return dropped;
 }
 
+// The tile of a camera-path tracer (path, volpath, bdpt): accumulate_tile over
+// sample(raster, L, counters) with one Counters per tile, then counters.flush(stats) and
+// the counters "<prefix>.paths" and "<prefix>.nan_dropped".
+template <class Counters, class SampleFn>
+void trace_tile(const Tile& tile, int spp, core::Rng& rng, int width, std::vector<Rgbd>& sum, core::Stats& stats,
+                const std::string& prefix, SampleFn&& sample) {
+  Counters counters;
+  const int64_t dropped =
+      accumulate_tile(tile, spp, rng, width, sum, [&](const Vec2& raster, Rgb& L) { return sample(raster, L, counters); });
+  counters.flush(stats);
+  stats.add(prefix + ".paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+  stats.add(prefix + ".nan_dropped", dropped);
+}
+
 ScheduleResult run_tiles(int width, int height, const RenderOptions& options, const std::string& label,
                          const TileFunction& fn, const PassFunction& pass_done = {});
 

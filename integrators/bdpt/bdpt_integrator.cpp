@@ -24,16 +24,13 @@ RenderResult BdptIntegrator::render(const scene::Scene& scene, const RenderOptio
       [&](const Tile& tile, int spp, core::Rng& rng, int thread) {
         core::Stats& stats = thread_stats[size_t(thread)];
         BdptScratch& sc = scratch[size_t(thread)];
-        BdptCounters counters;
         std::vector<Splat> splats;
         // A sample with a non-finite value is dropped whole (radiance and splats), counted.
-        const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
-          return tracer.sample(raster, rng, sc, L, splats, counters);
-        });
+        trace_tile<BdptCounters>(tile, spp, rng, w, sum, stats, "bdpt",
+                                 [&](const Vec2& raster, Rgb& L, BdptCounters& counters) {
+                                   return tracer.sample(raster, rng, sc, L, splats, counters);
+                                 });
         merger.submit(tile.index, std::move(splats));
-        counters.flush(stats);
-        stats.add("bdpt.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
-        stats.add("bdpt.nan_dropped", dropped);
       },
       [&](int64_t, bool) { merger.finish_pass(); });
 

@@ -20,14 +20,10 @@ RenderResult PathIntegrator::render(const scene::Scene& scene, const RenderOptio
   const PathTracer tracer(scene, m_settings, options.max_depth);
   return render_radiance(scene, options, "path", [&](const Tile& tile, int spp, core::Rng& rng, std::vector<Rgbd>& sum,
                                                      core::Stats& stats) {
-    PathCounters counters;
-    const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
+    trace_tile<PathCounters>(tile, spp, rng, w, sum, stats, "pt", [&](const Vec2& raster, Rgb& L, PathCounters& counters) {
       L = tracer.radiance(cam.generate_ray(raster), rng, counters);
       return is_finite(L);  // a non-finite sample is counted and dropped, never splatted
     });
-    counters.flush(stats);
-    stats.add("pt.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
-    stats.add("pt.nan_dropped", dropped);
   });
 }
 

@@ -15,34 +15,29 @@ RenderResult VolpathIntegrator::render(const scene::Scene& scene, const RenderOp
   if (!tracer.light_tracing()) {
     result = render_radiance(scene, options, "volpath", [&](const Tile& tile, int spp, core::Rng& rng,
                                                             std::vector<Rgbd>& sum, core::Stats& stats) {
-      VolpathCounters counters;
-      const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
-        L = tracer.radiance(cam.generate_ray(raster), rng, counters);
-        return is_finite(L);  // a non-finite sample is counted and dropped, never splatted
-      });
-      counters.flush(stats);
-      stats.add("volpath.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
-      stats.add("volpath.nan_dropped", dropped);
+      trace_tile<VolpathCounters>(tile, spp, rng, w, sum, stats, "volpath",
+                                  [&](const Vec2& raster, Rgb& L, VolpathCounters& counters) {
+                                    L = tracer.radiance(cam.generate_ray(raster), rng, counters);
+                                    return is_finite(L);  // a non-finite sample is counted and dropped, never splatted
+                                  });
     });
   } else {  // one light path per camera sample, joined to the camera and the camera path (volpath_light.cpp)
     result = render_radiance_with_splats(scene, options, "volpath", [&](const Tile& tile, int spp, core::Rng& rng,
                                                                         std::vector<Rgbd>& sum,
                                                                         std::vector<Splat>& splats, core::Stats& stats) {
-      VolpathCounters counters;
       VolpathTracer::LightEnd light;
-      const int64_t dropped = accumulate_tile(tile, spp, rng, w, sum, [&](const Vec2& raster, Rgb& L) {
-        Vec2 at;
-        Rgb splat;
-        const bool splatted = tracer.trace_light(rng, counters, light) && tracer.splat_light(light, rng, counters, at, splat);
-        L = tracer.radiance(cam.generate_ray(raster), rng, counters, &light);
-        if (!is_finite(L)) return false;  // dropped whole, its splat too
-        if (splatted)
-          splats.push_back({std::min(int(at.y()), cam.height() - 1) * w + std::min(int(at.x()), w - 1), splat});
-        return true;
-      });
-      counters.flush(stats);
-      stats.add("volpath.paths", int64_t(spp) * (tile.x1 - tile.x0) * (tile.y1 - tile.y0));
-      stats.add("volpath.nan_dropped", dropped);
+      trace_tile<VolpathCounters>(
+          tile, spp, rng, w, sum, stats, "volpath", [&](const Vec2& raster, Rgb& L, VolpathCounters& counters) {
+            Vec2 at;
+            Rgb splat;
+            const bool splatted =
+                tracer.trace_light(rng, counters, light) && tracer.splat_light(light, rng, counters, at, splat);
+            L = tracer.radiance(cam.generate_ray(raster), rng, counters, &light);
+            if (!is_finite(L)) return false;  // dropped whole, its splat too
+            if (splatted)
+              splats.push_back({std::min(int(at.y()), cam.height() - 1) * w + std::min(int(at.x()), w - 1), splat});
+            return true;
+          });
     });
   }
   result.info["media"] = scene.caps().has_media;
